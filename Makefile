@@ -1,0 +1,36 @@
+# The two commands of the README:
+#   make demo   installs what is missing, builds, runs the main job on the bundled Cornell box
+#   make test   installs what is missing, builds, runs the whole test suite
+BUILD_DIR ?= build
+BUILD_TYPE ?= Release
+JOBS ?= 2
+DEMO_OUT ?= out/cornell-box
+RADIOSITY = $(BUILD_DIR)/cli/radiosity
+
+.PHONY: all deps configure build demo test bench clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+configure: deps
+	@test -f $(BUILD_DIR)/CMakeCache.txt || cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j$(JOBS)
+
+demo: build
+	@mkdir -p $(DEMO_OUT)
+	$(RADIOSITY) info data/cornell-box/scene.json
+	$(RADIOSITY) render data/cornell-box/scene.json --method albedo -o $(DEMO_OUT)/albedo.exr
+	@echo "demo: wrote $(DEMO_OUT)/albedo.exr and $(DEMO_OUT)/albedo.png"
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+
+bench: build
+	@bash bench/run_all.sh $(BUILD_DIR)
+
+clean:
+	rm -rf $(BUILD_DIR) out

@@ -1,0 +1,46 @@
+// radiosity: a radiosity system with an exact local pass (see README.md).
+//
+// Exit codes: 0 success; 1 runtime error (bad input file, I/O), with one line on stderr naming
+// the problem; 2 usage error (unknown option, missing argument).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "scene/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "radiosity: progressive radiosity with an exact, error-bounded local pass.\n"
+      "Results go to files or stdout; progress and messages to stderr."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "radiosity 0.1.0");
+
+  rad::cli::Run run;
+  rad::cli::add_info_command(app, run);
+  rad::cli::add_render_command(app, run);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "radiosity: " << e.what() << "\nRun with --help for more information.\n";
+    return 2;
+  }
+
+  try {
+    run();
+  } catch (const rad::Error& e) {
+    std::cerr << "radiosity: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "radiosity: unexpected error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,9 @@
+#pragma once
+/// Module `localpass` (rad_localpass): everything that runs per pixel or per probe point
+/// (paper 004 Fig. 6; DESIGN.md §1 step 3): the error-bounded driver that gathers voxel by voxel
+/// and stops at the tolerance, the hemisphere gatherer, the vertex-tracing gatherer (paper 001),
+/// a Monte Carlo baseline, and for now the albedo render (primary rays only).
+///
+/// May use: octree, hemisphere, radiosity, scene, TBB.
+#include "localpass/albedo_render.h"
+#include "localpass/image.h"

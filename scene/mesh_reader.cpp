@@ -1,0 +1,181 @@
+#include "scene/mesh_reader.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
+#include <fstream>
+#include <sstream>
+
+#include "scene/error.h"
+
+namespace rad {
+namespace {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+};
+using ReadMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+
+/// Routes OpenMesh's global log streams into a buffer while alive, so library code prints
+/// nothing and the messages become warnings that name the file.
+class CaptureOpenMeshLog {
+ public:
+  CaptureOpenMeshLog() {
+    for (auto* s : {&omerr(), &omlog(), &omout()}) {
+      s->disconnect(std::cerr);
+      s->disconnect(std::cout);
+      s->connect(buffer_);
+    }
+  }
+  ~CaptureOpenMeshLog() {
+    omerr().disconnect(buffer_), omerr().connect(std::cerr);
+    omlog().disconnect(buffer_), omlog().connect(std::cerr);
+    omout().disconnect(buffer_), omout().connect(std::cout);
+  }
+  std::vector<std::string> lines() {
+    omerr().flush();
+    std::vector<std::string> out;
+    std::istringstream in(buffer_.str());
+    for (std::string line; std::getline(in, line);) {
+      if (!line.empty()) out.push_back(line);
+    }
+    return out;
+  }
+
+ private:
+  std::ostringstream buffer_;
+};
+
+std::string lower_extension(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// STL is read here rather than by OpenMesh, whose STL reader merges vertices by position and
+/// silently drops facets that become degenerate, including those with NaN coordinates. Every
+/// facet is returned in file order; validation happens later, per facet.
+std::vector<std::vector<Vec3>> read_stl_faces(const std::filesystem::path& file,
+                                              const std::string& where) {
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::vector<Vec3>> faces;
+  // Binary STL: 80-byte header, uint32 count, 50 bytes per facet. The size check, not the
+  // "solid" keyword, decides: many binary files start their header with "solid".
+  if (bytes.size() >= 84) {
+    uint32_t count = 0;
+    std::memcpy(&count, bytes.data() + 80, 4);
+    if (bytes.size() == 84 + 50ull * count) {
+      for (uint32_t f = 0; f < count; ++f) {
+        const char* facet = bytes.data() + 84 + 50ull * f + 12;  // skip the stored normal
+        std::vector<Vec3> vertices;
+        for (int v = 0; v < 3; ++v) {
+          float xyz[3];
+          std::memcpy(xyz, facet + 12 * v, 12);
+          vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
+        }
+        faces.push_back(std::move(vertices));
+      }
+      return faces;
+    }
+  }
+  std::istringstream text(bytes);
+  std::string word;
+  if (!(text >> word) || word != "solid") {
+    throw InputError(where + ": '" + file.string() + "' is neither binary nor ASCII STL");
+  }
+  std::vector<Vec3> current;
+  for (int line = 0; text >> word; ++line) {
+    if (word == "vertex") {
+      // strtod, unlike operator>>, parses "nan" and "inf", so validation can name them.
+      std::string xyz[3];
+      text >> xyz[0] >> xyz[1] >> xyz[2];
+      Vec3 p;
+      for (int c = 0; c < 3; ++c) {
+        char* end = nullptr;
+        p[c] = std::strtod(xyz[c].c_str(), &end);
+        if (xyz[c].empty() || *end != '\0') {
+          throw InputError(where + ": '" + file.string() + "' facet " + std::to_string(faces.size()) +
+                           ": cannot parse vertex coordinate '" + xyz[c] + "'");
+        }
+      }
+      current.push_back(p);
+    } else if (word == "endloop") {
+      faces.push_back(std::move(current));
+      current.clear();
+    }
+  }
+  if (faces.empty()) throw InputError(where + ": '" + file.string() + "' has no facets");
+  return faces;
+}
+
+}  // namespace
+
+bool is_supported_mesh_extension(const std::filesystem::path& file) {
+  const std::string ext = lower_extension(file);
+  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+}
+
+std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file,
+                                               const std::string& where,
+                                               std::vector<std::string>& warnings) {
+  if (!is_supported_mesh_extension(file)) {
+    throw InputError(where + ": unsupported mesh format '" + file.extension().string() +
+                     "' of '" + file.string() + "' (supported: .obj .ply .off .stl)");
+  }
+  if (!std::ifstream(file).good()) {
+    throw InputError(where + ": cannot open mesh file '" + file.string() + "'");
+  }
+  if (lower_extension(file) == ".stl") return read_stl_faces(file, where);
+
+  ReadMesh mesh;
+  bool ok = false;
+  std::vector<std::string> log;
+  {
+    CaptureOpenMeshLog capture;
+    OpenMesh::IO::Options options;  // positions only: normals are recomputed from the vertices
+    // OpenMesh's readers choose by extension and compare it case-sensitively.
+    ok = OpenMesh::IO::read_mesh(mesh, file.string(), options);
+    log = capture.lines();
+  }
+  if (!ok) {
+    std::string detail = log.empty() ? "" : " (" + log.front() + ")";
+    throw InputError(where + ": cannot read mesh file '" + file.string() + "'" + detail);
+  }
+  for (const std::string& line : log) {
+    // OpenMesh logs "complex edge" for a non-manifold face and then keeps it with duplicated
+    // vertices (ImporterT::add_face), which is what a polygon soup wants: not worth a warning.
+    if (line.find("complex edge") != std::string::npos) continue;
+    // A face OpenMesh could not add (unparsable or non-finite vertex, repeated vertex) would be
+    // lost without a trace: that is an error, not a warning.
+    if (line.find("ace") != std::string::npos || line.find("vertex index") != std::string::npos) {
+      throw InputError(where + ": cannot read every face of '" + file.string() + "' (" + line + ")");
+    }
+    warnings.push_back(where + ": " + file.filename().string() + ": " + line);
+  }
+  if (mesh.n_faces() == 0) {
+    std::string detail = log.empty() ? "" : " (" + log.front() + ")";
+    throw InputError(where + ": mesh file '" + file.string() + "' has no readable faces" + detail);
+  }
+
+  std::vector<std::vector<Vec3>> faces;
+  faces.reserve(mesh.n_faces());
+  for (const auto face : mesh.faces()) {
+    std::vector<Vec3> vertices;
+    for (const auto vertex : face.vertices()) {
+      const OpenMesh::Vec3d& p = mesh.point(vertex);
+      vertices.emplace_back(p[0], p[1], p[2]);
+    }
+    faces.push_back(std::move(vertices));
+  }
+  return faces;
+}
+
+}  // namespace rad

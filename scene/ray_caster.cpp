@@ -1,0 +1,134 @@
+#include "scene/ray_caster.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "scene/error.h"
+
+namespace rad {
+
+struct RayCaster::Impl {
+  RTCDevice device = nullptr;
+  RTCScene rtc_scene = nullptr;
+  std::vector<int> triangle_polygon;  ///< Embree primitive id -> polygon index.
+  std::string device_error;
+
+  ~Impl() {
+    if (rtc_scene) rtcReleaseScene(rtc_scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  /// Embree reports errors through a callback; keep the last one for the exception message.
+  static void record_device_error(void* user, RTCError code, const char* message) {
+    auto* impl = static_cast<Impl*>(user);
+    impl->device_error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                         (message ? message : "");
+  }
+};
+
+RayCaster::RayCaster(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw Error("cannot create the Embree device");
+  rtcSetDeviceErrorFunction(impl_->device, Impl::record_device_error, impl_.get());
+
+  // Triangulate every polygon in its own plane; Embree sees a triangle soup.
+  std::vector<float> positions;
+  std::vector<unsigned> indices;
+  for (size_t p = 0; p < scene.polygons.size(); ++p) {
+    const Polygon& polygon = scene.polygons[p];
+    const unsigned base = static_cast<unsigned>(positions.size() / 3);
+    for (const Vec3& v : polygon.vertices) {
+      positions.insert(positions.end(), {static_cast<float>(v.x()), static_cast<float>(v.y()),
+                                         static_cast<float>(v.z())});
+    }
+    for (const auto& t : triangulate(project_to_plane(polygon.vertices, polygon.normal))) {
+      indices.insert(indices.end(), {base + t[0], base + t[1], base + t[2]});
+      impl_->triangle_polygon.push_back(static_cast<int>(p));
+    }
+  }
+
+  impl_->rtc_scene = rtcNewScene(impl_->device);
+  // Robust mode keeps Embree's watertight triangle test: no rays slip through shared edges.
+  rtcSetSceneFlags(impl_->rtc_scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl_->rtc_scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  const size_t vertex_count = positions.size() / 3, triangle_count = indices.size() / 3;
+  // Embree reads vertex buffers with 16-byte loads: one float of padding at the end.
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertex_count + 1));
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangle_count));
+  if (!vb || !ib) throw Error("cannot allocate Embree buffers: " + impl_->device_error);
+  std::copy(positions.begin(), positions.end(), vb);
+  std::copy(indices.begin(), indices.end(), ib);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(impl_->rtc_scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(impl_->rtc_scene);
+  if (!impl_->device_error.empty()) throw Error("cannot build the ray-casting scene: " + impl_->device_error);
+}
+
+RayCaster::~RayCaster() = default;
+
+namespace {
+
+RTCRay to_embree(const Ray& ray, double t_min, double t_max) {
+  RTCRay r{};
+  r.org_x = static_cast<float>(ray.origin.x());
+  r.org_y = static_cast<float>(ray.origin.y());
+  r.org_z = static_cast<float>(ray.origin.z());
+  r.dir_x = static_cast<float>(ray.direction.x());
+  r.dir_y = static_cast<float>(ray.direction.y());
+  r.dir_z = static_cast<float>(ray.direction.z());
+  r.tnear = static_cast<float>(t_min);
+  r.tfar = std::isfinite(t_max) ? static_cast<float>(t_max) : std::numeric_limits<float>::infinity();
+  r.mask = ~0u;
+  r.time = 0;
+  r.flags = 0;
+  return r;
+}
+
+}  // namespace
+
+std::optional<Hit> RayCaster::closest_hit(const Ray& ray, double t_min, double t_max) const {
+  RTCRayHit rh{};
+  rh.ray = to_embree(ray, t_min, t_max);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1(impl_->rtc_scene, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+  Hit hit;
+  hit.polygon = impl_->triangle_polygon[rh.hit.primID];
+  const Polygon& polygon = scene_.polygons[hit.polygon];
+  hit.normal = polygon.normal;
+  const double cos_in = polygon.normal.dot(ray.direction);
+  hit.front_facing = cos_in < 0;
+  // Recompute the distance in double against the polygon's plane; Embree's float t is only
+  // ~1e-7 relative. Keep Embree's value when the ray grazes the plane.
+  double t = rh.ray.tfar;
+  if (std::abs(cos_in) > 1e-9) {
+    const double t_plane = polygon.normal.dot(polygon.vertices.front() - ray.origin) / cos_in;
+    if (std::isfinite(t_plane) && std::abs(t_plane - t) <= 1e-3 * std::max(1.0, std::abs(t))) {
+      t = t_plane;
+    }
+  }
+  hit.distance = t;
+  hit.point = ray.origin + t * ray.direction;
+  return hit;
+}
+
+bool RayCaster::occluded(const Ray& ray, double t_min, double t_max) const {
+  RTCRay r = to_embree(ray, t_min, t_max);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1(impl_->rtc_scene, &context, &r);
+  return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace rad

@@ -1,0 +1,47 @@
+#pragma once
+/// Closest-hit and occlusion queries against a scene's polygons. Embree does the traversal in
+/// single precision; the reported distance and point are recomputed in double against the hit
+/// polygon's plane. Embree's headers stay inside ray_caster.cpp.
+#include <memory>
+#include <optional>
+
+#include "scene/ray.h"
+#include "scene/scene.h"
+
+namespace rad {
+
+/// A ray's first intersection with the scene.
+struct Hit {
+  int polygon = -1;           ///< Index into Scene::polygons.
+  double distance = 0;        ///< Along the (unit) ray direction, in scene units.
+  Vec3 point;                 ///< origin + distance * direction.
+  Vec3 normal;                ///< The polygon's unit front normal (not flipped).
+  bool front_facing = false;  ///< True when the ray arrives at the front side.
+};
+
+/// Ray queries against every polygon of a scene, both sides (polygons are opaque from both).
+/// Built once (O(n log n)); queries are thread-safe and may run concurrently. The scene must
+/// outlive the caster.
+class RayCaster {
+ public:
+  explicit RayCaster(const Scene& scene);
+  ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  /// The closest hit with t in [t_min, t_max], or nothing.
+  std::optional<Hit> closest_hit(const Ray& ray, double t_min = 0,
+                                 double t_max = std::numeric_limits<double>::infinity()) const;
+
+  /// True when any polygon intersects the ray with t in [t_min, t_max].
+  bool occluded(const Ray& ray, double t_min, double t_max) const;
+
+  const Scene& scene() const { return scene_; }
+
+ private:
+  struct Impl;
+  const Scene& scene_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rad

@@ -1,0 +1,52 @@
+#pragma once
+/// The scene model: materials, planar polygons, an optional camera, and what loading noticed.
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/camera.h"
+#include "scene/material.h"
+#include "scene/polygon.h"
+
+namespace rad {
+
+/// One entry of the scene file's "objects" list, kept for messages and statistics.
+struct SceneObject {
+  std::string name;        ///< "name" from the file, or empty.
+  std::string mesh;        ///< Mesh path as written, or empty for inline polygons.
+  int material = -1;       ///< Index into Scene::materials.
+  int first_polygon = 0;   ///< Its polygons are [first_polygon, first_polygon + polygon_count).
+  int polygon_count = 0;
+};
+
+/// Axis-aligned box; empty (lo > hi) until a point is added.
+struct Bounds {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
+  void add(const Vec3& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
+  double diagonal() const { return (hi - lo).norm(); }
+};
+
+/// A loaded, validated scene: every polygon is planar, simple, of non-zero area, with finite
+/// coordinates and a valid material.
+struct Scene {
+  std::filesystem::path path;           ///< The scene file it came from (empty if built in code).
+  std::vector<Material> materials;
+  std::vector<SceneObject> objects;
+  std::vector<Polygon> polygons;
+  std::optional<CameraSpec> camera;
+  std::vector<std::string> warnings;    ///< Things loading fixed or noticed, one line each.
+
+  /// "objects[2] \"tall block\" polygon 5" (plus " triangle 1" for a split polygon).
+  std::string describe_polygon(int polygon) const;
+  Bounds bounds() const;
+  double total_area() const;
+  /// Sum of emission * area over polygons: emitted power in W when lengths are metres.
+  Rgb emitted_power() const;
+  int emitter_count() const;
+  int vertex_count() const;
+};
+
+}  // namespace rad

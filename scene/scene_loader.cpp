@@ -1,0 +1,300 @@
+#include "scene/scene_loader.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "scene/error.h"
+#include "scene/mesh_reader.h"
+#include "scene/polygon_validation.h"
+
+namespace rad {
+namespace {
+
+using Json = nlohmann::json;
+
+/// Text markers for the non-standard literals NaN, Infinity and -Infinity (see
+/// quote_nonfinite_literals): they survive parsing as strings so the element can be named.
+constexpr const char* kNonFinitePrefix = "\x01nonfinite:";
+
+/// JSON has no NaN or Infinity, but Python's json.dump writes them; a user who generated a
+/// scene that way deserves a message naming the element, not a parse error at a byte offset.
+/// Outside strings, those bare literals become marker strings the readers below reject.
+std::string quote_nonfinite_literals(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) {
+        out += text[++i];
+      } else if (c == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      out += c;
+      continue;
+    }
+    bool replaced = false;
+    for (const char* literal : {"-Infinity", "Infinity", "NaN"}) {
+      const size_t len = std::char_traits<char>::length(literal);
+      if (text.compare(i, len, literal) == 0) {
+        out += std::string("\"\\u0001nonfinite:") + literal + "\"";
+        i += len - 1;
+        replaced = true;
+        break;
+      }
+    }
+    if (!replaced) out += c;
+  }
+  return out;
+}
+
+std::string line_column(const std::string& text, size_t byte) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line, column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+/// Reading JSON values with the element's path in every message.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw InputError(file_ + ": " + where + ": " + what);
+  }
+  std::string at(const std::string& where) const { return file_ + ": " + where; }
+
+  void require_object(const Json& j, const std::string& where,
+                      const std::set<std::string>& allowed) const {
+    if (!j.is_object()) fail(where, "expected an object, got " + type_name(j));
+    for (const auto& [key, value] : j.items()) {
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
+        fail(where, "unknown key \"" + key + "\" (allowed: " + list + ")");
+      }
+    }
+  }
+
+  double number(const Json& j, const std::string& where) const {
+    if (j.is_string()) {
+      const std::string s = j.get<std::string>();
+      if (s.rfind(kNonFinitePrefix, 0) == 0) {
+        fail(where, "is not a finite number (" + s.substr(std::string(kNonFinitePrefix).size()) + ")");
+      }
+    }
+    if (!j.is_number()) fail(where, "expected a number, got " + type_name(j));
+    const double value = j.get<double>();
+    if (!std::isfinite(value)) fail(where, "is not a finite number");
+    return value;
+  }
+
+  int positive_int(const Json& j, const std::string& where) const {
+    if (!j.is_number_integer() || j.get<long long>() <= 0 || j.get<long long>() > 1 << 20) {
+      fail(where, "expected a positive integer (at most 1048576), got " + j.dump());
+    }
+    return j.get<int>();
+  }
+
+  std::string string(const Json& j, const std::string& where) const {
+    if (!j.is_string() || j.get<std::string>().rfind(kNonFinitePrefix, 0) == 0) {
+      fail(where, "expected a string, got " + type_name(j));
+    }
+    return j.get<std::string>();
+  }
+
+  Vec3 vec3(const Json& j, const std::string& where) const {
+    if (!j.is_array() || j.size() != 3) fail(where, "expected [x, y, z], got " + abbreviated(j));
+    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
+  }
+
+  /// An RGB triple, or one number for a grey.
+  Rgb rgb(const Json& j, const std::string& where) const {
+    if (j.is_number()) {
+      const double v = number(j, where);
+      return {v, v, v};
+    }
+    if (!j.is_array() || j.size() != 3) fail(where, "expected [r, g, b], got " + abbreviated(j));
+    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
+  }
+
+ private:
+  static std::string type_name(const Json& j) {
+    if (j.is_string() && j.get<std::string>().rfind(kNonFinitePrefix, 0) == 0) {
+      return "a non-finite number";
+    }
+    return std::string(j.type_name()) + " " + abbreviated(j);
+  }
+  static std::string abbreviated(const Json& j) {
+    std::string text = j.dump();
+    return text.size() > 40 ? text.substr(0, 37) + "..." : text;
+  }
+
+  std::string file_;
+};
+
+Material read_material(const Reader& in, const std::string& name, const Json& j) {
+  const std::string where = "materials.\"" + name + "\"";
+  in.require_object(j, where, {"reflectance", "emission"});
+  Material m;
+  m.name = name;
+  if (j.contains("reflectance")) m.reflectance = in.rgb(j["reflectance"], where + ".reflectance");
+  if (j.contains("emission")) m.emission = in.rgb(j["emission"], where + ".emission");
+  for (int c = 0; c < 3; ++c) {
+    if (!(m.reflectance[c] >= 0 && m.reflectance[c] < 1)) {
+      std::ostringstream msg;
+      msg << "reflectance[" << c << "] = " << m.reflectance[c]
+          << " is outside [0, 1) (a surface cannot reflect more than it receives)";
+      in.fail(where, msg.str());
+    }
+    if (m.emission[c] < 0) {
+      std::ostringstream msg;
+      msg << "emission[" << c << "] = " << m.emission[c] << " is negative";
+      in.fail(where, msg.str());
+    }
+  }
+  return m;
+}
+
+CameraSpec read_camera(const Reader& in, const Json& j) {
+  in.require_object(j, "camera", {"eye", "look_at", "up", "fov_deg", "width", "height"});
+  CameraSpec spec;
+  for (const char* key : {"eye", "look_at", "fov_deg"}) {
+    if (!j.contains(key)) in.fail("camera", std::string("missing \"") + key + "\"");
+  }
+  spec.eye = in.vec3(j["eye"], "camera.eye");
+  spec.look_at = in.vec3(j["look_at"], "camera.look_at");
+  if (j.contains("up")) spec.up = in.vec3(j["up"], "camera.up");
+  spec.fov_deg = in.number(j["fov_deg"], "camera.fov_deg");
+  if (j.contains("width")) spec.width = in.positive_int(j["width"], "camera.width");
+  if (j.contains("height")) spec.height = in.positive_int(j["height"], "camera.height");
+  try {
+    Camera check(spec);  // same validation as at render time, reported with the file name
+  } catch (const InputError& e) {
+    throw InputError(in.at(e.what()));
+  }
+  return spec;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& json_text, const std::filesystem::path& file) {
+  const Reader in(file.string());
+  Json root;
+  try {
+    root = Json::parse(quote_nonfinite_literals(json_text));
+  } catch (const Json::parse_error& e) {
+    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line..."
+    std::string what = e.what();
+    const size_t colon = what.find("parse error");
+    what = colon == std::string::npos ? what : what.substr(colon);
+    throw InputError(file.string() + ":" + line_column(json_text, e.byte) + ": invalid JSON: " + what);
+  } catch (const Json::exception& e) {
+    throw InputError(file.string() + ": invalid JSON: " + std::string(e.what()));
+  }
+
+  Scene scene;
+  scene.path = file;
+  in.require_object(root, "top level", {"materials", "objects", "camera"});
+
+  // Materials
+  std::map<std::string, int> material_index;
+  if (root.contains("materials")) {
+    const Json& materials = root["materials"];
+    if (!materials.is_object()) in.fail("materials", "expected an object of named materials");
+    for (const auto& [name, value] : materials.items()) {
+      material_index[name] = static_cast<int>(scene.materials.size());
+      scene.materials.push_back(read_material(in, name, value));
+    }
+  }
+
+  // Objects
+  if (!root.contains("objects")) in.fail("top level", "missing \"objects\"");
+  const Json& objects = root["objects"];
+  if (!objects.is_array()) in.fail("objects", "expected a list of objects");
+  const std::filesystem::path folder = file.parent_path();
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const Json& o = objects[i];
+    std::string where = "objects[" + std::to_string(i) + "]";
+    in.require_object(o, where, {"name", "mesh", "polygons", "material"});
+    SceneObject object;
+    if (o.contains("name")) {
+      object.name = in.string(o["name"], where + ".name");
+      where += " \"" + object.name + "\"";
+    }
+    if (o.contains("mesh") == o.contains("polygons")) {
+      in.fail(where, "needs exactly one of \"mesh\" or \"polygons\"");
+    }
+    if (!o.contains("material")) in.fail(where, "missing \"material\"");
+    const std::string material = in.string(o["material"], where + ".material");
+    const auto found = material_index.find(material);
+    if (found == material_index.end()) {
+      in.fail(where, "unknown material \"" + material + "\"");
+    }
+    object.material = found->second;
+    object.first_polygon = static_cast<int>(scene.polygons.size());
+    const int object_id = static_cast<int>(i);
+
+    std::vector<std::vector<Vec3>> faces;
+    std::string element;
+    if (o.contains("mesh")) {
+      object.mesh = in.string(o["mesh"], where + ".mesh");
+      where += " (" + object.mesh + ")";
+      faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings);
+      element = " face ";
+    } else {
+      const Json& polygons = o["polygons"];
+      if (!polygons.is_array()) in.fail(where + ".polygons", "expected a list of polygons");
+      for (size_t p = 0; p < polygons.size(); ++p) {
+        const std::string pw = where + " polygon " + std::to_string(p);
+        if (!polygons[p].is_array()) in.fail(pw, "expected a list of [x, y, z] vertices");
+        std::vector<Vec3> vertices;
+        for (size_t v = 0; v < polygons[p].size(); ++v) {
+          vertices.push_back(in.vec3(polygons[p][v], pw + " vertex " + std::to_string(v)));
+        }
+        faces.push_back(std::move(vertices));
+      }
+      element = " polygon ";
+    }
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const int index = static_cast<int>(f);
+      for (Polygon& p : make_polygons(std::move(faces[f]), in.at(where + element + std::to_string(f)),
+                                      object.material, object_id, index, scene.warnings)) {
+        scene.polygons.push_back(std::move(p));
+      }
+    }
+    object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
+    scene.objects.push_back(std::move(object));
+  }
+  if (scene.polygons.empty()) in.fail("objects", "the scene has no polygons");
+
+  if (root.contains("camera")) scene.camera = read_camera(in, root["camera"]);
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw InputError(file.string() + ": cannot open scene file");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  if (stream.bad()) throw InputError(file.string() + ": cannot read scene file");
+  return parse_scene(text.str(), file);
+}
+
+}  // namespace rad
