@@ -4,6 +4,7 @@
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= 2
+MAKEFLAGS += --no-print-directory
 DEMO_OUT ?= out/cornell-box
 RADIOSITY = $(BUILD_DIR)/cli/radiosity
 
@@ -24,7 +25,8 @@ demo: build
 	@mkdir -p $(DEMO_OUT)
 	$(RADIOSITY) info data/cornell-box/scene.json
 	$(RADIOSITY) render data/cornell-box/scene.json --method albedo -o $(DEMO_OUT)/albedo.exr
-	@echo "demo: wrote $(DEMO_OUT)/albedo.exr and $(DEMO_OUT)/albedo.png"
+	$(RADIOSITY) render data/cornell-box/scene.json --method facing -o $(DEMO_OUT)/facing.exr
+	@echo "demo: images in $(DEMO_OUT)/ (albedo.exr/.png, facing.exr/.png)"
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)

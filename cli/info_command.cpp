@@ -89,7 +89,8 @@ void run_info(const InfoOptions& options) {
     const Material& mat = scene.materials[m];
     std::cout << "  " << std::left << std::setw(12) << mat.name << std::right
               << " reflectance " << triple(mat.reflectance) << "  emission "
-              << triple(mat.emission) << "  " << polygons_per_material[m] << " polygons, area "
+              << triple(mat.emission) << "  " << polygons_per_material[m]
+              << (polygons_per_material[m] == 1 ? " polygon" : " polygons") << ", area "
               << area_per_material[m] << "\n";
   }
   std::cout << "warnings       " << scene.warnings.size() << (scene.warnings.empty() ? "" : " (on stderr)")

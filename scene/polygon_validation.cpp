@@ -72,6 +72,7 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
   const double deviation = plane_deviation(distinct, n);
   if (deviation > tol.non_planar_limit * scale) {
     std::ostringstream msg;
+    msg.precision(3);
     msg << where << ": is not planar (a vertex lies " << deviation
         << " from the best-fit plane, " << deviation / scale
         << " of the polygon's size; the limit is " << tol.non_planar_limit << ")";
@@ -90,6 +91,7 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
 
   // Slightly non-planar: split into triangles, each exactly planar (DESIGN.md §5).
   std::ostringstream msg;
+  msg.precision(3);
   msg << where << ": is " << deviation << " off plane (" << deviation / scale
       << " of its size); split into " << distinct.size() - 2 << " triangles";
   warnings.push_back(msg.str());

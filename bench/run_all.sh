@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Runs every benchmark and writes its table to bench/results/, with the machine and command.
+# Usage: bash bench/run_all.sh [BUILD_DIR]   (or: make bench)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+out=bench/results
+mkdir -p "$out"
+
+machine() {
+  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
+  echo "- date: $(date -u +%Y-%m-%d)"
+  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+}
+
+# Ray casting (Cornell box, 20 polygons)
+json=$(mktemp)
+"$build/bench/ray_casting_bench" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+  --benchmark_out="$json" --benchmark_out_format=json >/dev/null
+{
+  echo "# Ray casting on the Cornell box"
+  echo
+  echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/ray_casting_bench --benchmark_repetitions=3\`)."
+  machine
+  echo
+  echo "| benchmark | threads | median time | items per second |"
+  echo "|---|---|---|---|"
+  python3 - "$json" <<'PY'
+import json, sys
+data = json.load(open(sys.argv[1]))
+for b in data["benchmarks"]:
+    if b.get("aggregate_name") != "median":
+        continue
+    name = b["run_name"]
+    threads = "all (TBB)" if "render" in name else "1"
+    print(f"| {name} | {threads} | {b['real_time']:.3g} {b['time_unit']} | {b['items_per_second']:.3g} |")
+PY
+} > "$out/ray_casting.md"
+rm -f "$json"
+echo "wrote $out/ray_casting.md" >&2

@@ -1,0 +1,43 @@
+#pragma once
+/// The malformed scene files of tests/data/bad/, one per error class of DESIGN.md §5, with the
+/// words each message must contain. Shared by the loader test (in process) and the CLI test
+/// (exit code 1 and the message on stderr).
+#include <string>
+#include <vector>
+
+namespace rad::test {
+
+struct BadSceneCase {
+  std::string file;      ///< under tests/data/bad/
+  std::string element;   ///< the element the message must name
+  std::string problem;   ///< the words describing the problem
+};
+
+inline const std::vector<BadSceneCase>& bad_scene_cases() {
+  static const std::vector<BadSceneCase> cases{
+      {"invalid_json.json", "invalid_json.json:2:", "invalid JSON"},
+      {"unknown_key.json", "objects[0]", "unknown key \"colour\""},
+      {"unknown_material.json", "objects[0] \"wall\"", "unknown material \"marble\""},
+      {"reflectance_2.json", "materials.\"white\"", "reflectance[1] = 2 is outside [0, 1)"},
+      {"negative_emission.json", "materials.\"lamp\"", "emission[1] = -1 is negative"},
+      {"nan_coordinate.json", "objects[0] polygon 1 vertex 2[0]", "not a finite number (NaN)"},
+      {"infinite_coordinate.json", "objects[0] polygon 0 vertex 1[0]", "not a finite number (Infinity)"},
+      {"nan_in_stl.json", "objects[0] (nan.stl) face 1", "vertex 2 is not finite"},
+      {"nan_in_mesh.json", "objects[0] (nan.off)", "cannot read every face"},
+      {"two_vertices.json", "objects[0] polygon 2", "has 2 vertices"},
+      {"zero_area.json", "objects[0] polygon 0", "zero area"},
+      {"non_planar.json", "objects[0] polygon 0", "is not planar"},
+      {"self_intersecting.json", "objects[0] polygon 0", "self-intersecting"},
+      {"missing_mesh.json", "objects[0] (no-such-file.obj)", "cannot open mesh file"},
+      {"unsupported_mesh.json", "objects[0] (points.xyz)", "unsupported mesh format '.xyz'"},
+      {"unreadable_mesh.json", "objects[0] (garbage.ply)", "cannot read mesh file"},
+      {"bad_camera.json", "camera", "up is zero or parallel to the view direction"},
+      {"wrong_type.json", "objects[0] polygon 0 vertex 2", "expected [x, y, z]"},
+      {"mesh_and_polygons.json", "objects[0]", "exactly one of \"mesh\" or \"polygons\""},
+      {"no_objects.json", "top level", "missing \"objects\""},
+      {"does_not_exist.json", "does_not_exist.json", "cannot open scene file"},
+  };
+  return cases;
+}
+
+}  // namespace rad::test

@@ -1,0 +1,133 @@
+// End-to-end tests of the `radiosity` executable: exit codes (0 ok, 1 runtime error, 2 usage),
+// one-line messages naming file and element, and the files it writes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tests/bad_scene_cases.h"
+#include "viz/image_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kRoot = RAD_SOURCE_DIR;
+const fs::path kData = RAD_TEST_DATA;
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::temp_directory_path() / (std::string("rad_cli_test_") + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Runs `radiosity ARGS` with stdout and stderr captured separately.
+Result run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / "rad_cli_capture";
+  fs::create_directories(dir);
+  const std::string tag = std::to_string(::getpid());
+  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
+  const std::string command = std::string("'") + RADIOSITY_EXE + "' " + args + " >'" + out.string() +
+                              "' 2>'" + err.string() + "' </dev/null";
+  const int status = std::system(command.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+TEST(Cli, EverySubcommandHasHelp) {
+  for (const char* args : {"--help", "info --help", "render --help"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+    EXPECT_NE(r.out.find("Usage:"), std::string::npos) << args << "\n" << r.out;
+  }
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  for (const char* args : {"", "info", "render scene.json", "info a.json --no-such-option",
+                           "render x.json --method nope -o y.exr", "frobnicate"}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << "'" << args << "'\n" << r.err;
+    EXPECT_NE(r.err.find("--help"), std::string::npos) << r.err;
+  }
+}
+
+TEST(Cli, MalformedScenesExitOneWithOneLineNamingFileAndElement) {
+  for (const auto& c : rad::test::bad_scene_cases()) {
+    const fs::path file = kData / "bad" / c.file;
+    const Result r = run("info '" + file.string() + "'");
+    EXPECT_EQ(r.exit_code, 1) << c.file << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << c.file;
+    // One line, prefixed, naming the file, the element and the problem.
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.file << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("radiosity: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(file.string()), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.element), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.problem), std::string::npos) << r.err;
+  }
+}
+
+TEST(Cli, InfoReportsTheCornellBox) {
+  const Result r = run("info '" + (kRoot / "data/cornell-box/scene.json").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("polygons       20\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("emitters       1 polygon\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("warning: "), std::string::npos) << "the left wall's split is reported";
+
+  const Result j = run("info --json '" + (kRoot / "data/cornell-box/scene.json").string() + "'");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const auto info = nlohmann::json::parse(j.out);
+  EXPECT_EQ(info["polygons"], 20);
+  EXPECT_EQ(info["emitters"], 1);
+  EXPECT_EQ(info["materials"].size(), 4u);
+  EXPECT_NEAR(info["emitted_power"][0].get<double>(), 130 * 105 * 53.4071, 1e-3);
+  EXPECT_EQ(info["camera"]["width"], 512);
+}
+
+TEST(Cli, RenderAlbedoWritesExrAndPng) {
+  const fs::path dir = scratch();
+  const Result r = run("render '" + (kRoot / "data/cornell-box/scene.json").string() +
+                       "' --method albedo --width 40 --height 30 -o '" + (dir / "img.exr").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const rad::Image image = rad::read_exr(dir / "img.exr");
+  EXPECT_EQ(image.width, 40);
+  EXPECT_EQ(image.height, 30);
+  EXPECT_TRUE(fs::exists(dir / "img.png"));
+  EXPECT_GT(fs::file_size(dir / "img.png"), 100u);
+  // Only the two outputs: no temporary files left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), {}), 2);
+}
+
+TEST(Cli, RenderWithoutCameraOrWithBadOutputExitsOne) {
+  const fs::path dir = scratch();
+  Result r = run("render '" + (kData / "meshes/square_obj.json").string() + "' -o '" +
+                 (dir / "x.exr").string() + "'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no \"camera\" block"), std::string::npos) << r.err;
+  // An output whose folder cannot be created (a regular file is in the way).
+  std::ofstream(dir / "file") << "x";
+  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() + "' --width 8 --height 8 -o '" +
+          (dir / "file/x.exr").string() + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("file/x.exr"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -1,0 +1,118 @@
+#include "scene/scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "scene/error.h"
+#include "tests/bad_scene_cases.h"
+
+namespace rad {
+namespace {
+
+const std::filesystem::path kData = RAD_TEST_DATA;
+const std::filesystem::path kScenes = std::filesystem::path(RAD_SOURCE_DIR) / "data";
+
+TEST(SceneLoader, LoadsCornellBox) {
+  const Scene scene = load_scene(kScenes / "cornell-box/scene.json");
+  // floor 1, ceiling 4 (around the light), light 1, back 1, right 1, left 2 (non-planar quad
+  // split), two blocks of 5 faces each.
+  EXPECT_EQ(scene.polygons.size(), 20u);
+  EXPECT_EQ(scene.emitter_count(), 1);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("\"left wall\""), std::string::npos) << scene.warnings[0];
+  // The light (130 x 105 mm) emits M = pi * (17, 12, 4).
+  const Rgb power = scene.emitted_power();
+  EXPECT_NEAR(power.x(), 130.0 * 105.0 * 53.4071, 1e-6 * power.x());
+  ASSERT_TRUE(scene.camera);
+  EXPECT_EQ(scene.camera->eye, Vec3(278, 273, -800));
+  // 35 mm focal length, 25 mm film: fov = 2 atan(12.5 / 35).
+  EXPECT_NEAR(scene.camera->fov_deg, 2 * std::atan(12.5 / 35) * 180 / std::numbers::pi, 1e-4);
+  const Bounds b = scene.bounds();
+  EXPECT_EQ(b.lo, Vec3(0, 0, 0));
+  EXPECT_EQ(b.hi, Vec3(556, 548.8, 559.2));
+  // Every polygon faces into the box: its normal points towards the box centre.
+  const Vec3 centre(278, 274.4, 279.6);
+  for (size_t i = 0; i < scene.polygons.size(); ++i) {
+    const Polygon& p = scene.polygons[i];
+    const bool block = scene.objects[p.object].name.find("block") != std::string::npos;
+    if (block) continue;  // block faces point out of the blocks, not at the centre
+    EXPECT_GT(p.normal.dot(centre - p.vertices[0]), 0) << scene.describe_polygon(static_cast<int>(i));
+  }
+}
+
+TEST(SceneLoader, LoadsTheTestScenes) {
+  const Scene cube = load_scene(kScenes / "closed-cube/scene.json");
+  EXPECT_EQ(cube.polygons.size(), 6u);
+  EXPECT_NEAR(cube.total_area(), 6.0, 1e-14);
+  for (const Polygon& p : cube.polygons) {
+    EXPECT_GT(p.normal.dot(Vec3(0.5, 0.5, 0.5) - p.vertices[0]), 0) << "cube faces point inward";
+  }
+  const Scene lof = load_scene(kScenes / "light-over-floor/scene.json");
+  EXPECT_EQ(lof.polygons.size(), 3u);
+  EXPECT_EQ(lof.emitter_count(), 1);
+}
+
+TEST(SceneLoader, ReadsEveryMeshFormat) {
+  for (const char* name : {"square_obj.json", "square_off.json", "square_ply.json", "square_stl.json"}) {
+    const Scene scene = load_scene(kData / "meshes" / name);
+    EXPECT_NEAR(scene.total_area(), 1.0, 1e-12) << name;
+    EXPECT_TRUE(scene.warnings.empty()) << name << ": " << scene.warnings.front();
+    for (const Polygon& p : scene.polygons) {
+      EXPECT_NEAR(p.normal.y(), 1.0, 1e-12) << name << ": counter-clockwise from +y is front";
+    }
+    EXPECT_EQ(scene.objects[0].mesh.empty(), false);
+  }
+  EXPECT_EQ(load_scene(kData / "meshes/square_stl.json").polygons.size(), 2u);
+  EXPECT_EQ(load_scene(kData / "meshes/square_obj.json").polygons.size(), 1u);
+}
+
+TEST(SceneLoader, KeepsNonManifoldFaces) {
+  // Three quads share one edge; OpenMesh cannot put them in one half-edge mesh, but none of
+  // the user's polygons may be lost.
+  const Scene scene = load_scene(kData / "meshes/fin_obj.json");
+  EXPECT_EQ(scene.polygons.size(), 3u);
+  EXPECT_NEAR(scene.total_area(), 3.0, 1e-12);
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
+TEST(SceneLoader, DefaultsAndGreyShorthand) {
+  const Scene scene = parse_scene(R"({"materials": {"m": {}, "g": {"reflectance": 0.25}},
+      "objects": [{"material": "m", "polygons": [[[0,0,0],[1,0,0],[0,1,0]]]},
+                  {"material": "g", "polygons": [[[0,0,1],[1,0,1],[0,1,1]]]}]})",
+                                  "inline.json");
+  EXPECT_EQ(scene.materials[scene.polygons[0].material].reflectance, Rgb(0.5, 0.5, 0.5));
+  EXPECT_EQ(scene.materials[scene.polygons[0].material].emission, Rgb::Zero());
+  EXPECT_EQ(scene.materials[scene.polygons[1].material].reflectance, Rgb(0.25, 0.25, 0.25));
+  EXPECT_FALSE(scene.camera);
+}
+
+TEST(SceneLoader, NonFiniteLiteralsInsideStringsAreLeftAlone) {
+  // "NaN" inside a name is text, not a number.
+  const Scene scene = parse_scene(R"({"materials": {"m": {}},
+      "objects": [{"name": "NaN Infinity", "material": "m", "polygons": [[[0,0,0],[1,0,0],[0,1,0]]]}]})",
+                                  "inline.json");
+  EXPECT_EQ(scene.objects[0].name, "NaN Infinity");
+}
+
+TEST(SceneLoader, RejectsEveryMalformedFileNamingFileAndElement) {
+  ASSERT_GE(test::bad_scene_cases().size(), 12u);
+  for (const auto& c : test::bad_scene_cases()) {
+    const std::filesystem::path file = kData / "bad" / c.file;
+    std::string message;
+    try {
+      load_scene(file);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    ASSERT_FALSE(message.empty()) << c.file << " loaded without an error";
+    EXPECT_NE(message.find(file.string()), std::string::npos) << c.file << ": " << message;
+    EXPECT_NE(message.find(c.element), std::string::npos) << c.file << ": " << message;
+    EXPECT_NE(message.find(c.problem), std::string::npos) << c.file << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+  }
+}
+
+}  // namespace
+}  // namespace rad
