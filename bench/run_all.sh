@@ -10,7 +10,10 @@ mkdir -p "$out"
 machine() {
   echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
   echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  local dirty=""
+  [ -z "$(git status --porcelain -- scene hemisphere radiosity octree localpass viz cli bench/*.cpp 2>/dev/null)" ] \
+    || dirty=" plus uncommitted changes"
+  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
 }
 
 # Ray casting (Cornell box, 20 polygons)
