@@ -1,17 +1,17 @@
-// `radiosity render SCENE --method albedo|facing -o IMAGE.exr`: per-pixel images from the scene camera.
-#include <tbb/global_control.h>
-
+// `radiosity render SCENE --method albedo|facing|patches [--solution S.vtp] -o IMAGE.exr`: per-pixel images from the scene camera.
 #include <chrono>
 #include <iostream>
 #include <memory>
 #include <optional>
 
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "localpass/albedo_render.h"
+#include "localpass/patch_render.h"
 #include "scene/error.h"
 #include "scene/ray_caster.h"
-#include "scene/scene_loader.h"
 #include "viz/image_io.h"
+#include "viz/solution_io.h"
 
 namespace rad::cli {
 namespace {
@@ -19,6 +19,8 @@ namespace {
 struct RenderOptions {
   std::string scene;
   std::string method = "albedo";
+  std::string solution;  ///< .vtp from `solve`, for methods that need one
+  bool no_ambient = false;
   std::string output;
   std::string preview;  ///< PNG path; default: the output with extension .png
   bool no_preview = false;
@@ -29,19 +31,30 @@ struct RenderOptions {
 
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  std::optional<tbb::global_control> limit;
-  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
-
-  const Scene scene = load_scene(o.scene);
-  for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
+  const ThreadLimit limit(o.threads);
+  const bool needs_solution = o.method == "patches";
+  if (needs_solution && o.solution.empty()) {
+    throw InputError("--method " + o.method + " needs --solution (a .vtp written by `radiosity solve`)");
+  }
+  const Scene scene = load_scene_reporting(o.scene);
   if (!scene.camera) throw InputError(o.scene + ": no \"camera\" block; render needs one");
   CameraSpec spec = *scene.camera;
   if (o.width > 0) spec.width = o.width;
   if (o.height > 0) spec.height = o.height;
   const Camera camera(spec);
-  const RayCaster caster(scene);
 
-  const Image image = o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera);
+  Image image;
+  if (needs_solution) {
+    const Solution solution = read_solution(o.solution);
+    if (solution.scene_fingerprint != scene.fingerprint()) {
+      throw InputError(o.solution + ": solved for a different scene (" + solution.scene_path +
+                       "); solve " + o.scene + " again");
+    }
+    image = render_patches(scene, solution, camera, !o.no_ambient);
+  } else {
+    const RayCaster caster(scene);
+    image = o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera);
+  }
 
   write_exr(o.output, image);
   std::string written = o.output;
@@ -65,9 +78,12 @@ void add_render_command(CLI::App& app, Run& run) {
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
   sub->add_option("-m,--method", o->method,
                   "albedo: primary rays only (reflectance; emitters show their emission); "
-                  "facing: albedo x |cos| to the eye, to see the geometry")
-      ->check(CLI::IsMember({"albedo", "facing"}))
+                  "facing: albedo x |cos| to the eye, to see the geometry; "
+                  "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution)")
+      ->check(CLI::IsMember({"albedo", "facing", "patches"}))
       ->capture_default_str();
+  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`");
+  sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");
   sub->add_option("-o,--output", o->output, "Output image (.exr, linear float RGB)")->required();
   sub->add_option("--preview", o->preview, "PNG preview path (default: OUTPUT with .png)");
   sub->add_flag("--no-preview", o->no_preview, "Do not write the PNG preview");

@@ -1,5 +1,8 @@
 #include "scene/scene.h"
 
+#include <cstdint>
+#include <cstdio>
+
 namespace rad {
 
 std::string Scene::describe_polygon(int polygon) const {
@@ -39,6 +42,23 @@ int Scene::emitter_count() const {
   int count = 0;
   for (const Polygon& p : polygons) count += materials[p.material].is_emitter() ? 1 : 0;
   return count;
+}
+
+std::string Scene::fingerprint() const {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  auto add = [&hash](const void* data, size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull;
+  };
+  for (const Polygon& p : polygons) {
+    for (const Vec3& v : p.vertices) add(v.data(), 3 * sizeof(double));
+    const Material& m = materials[p.material];
+    add(m.reflectance.data(), 3 * sizeof(double));
+    add(m.emission.data(), 3 * sizeof(double));
+  }
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
+  return text;
 }
 
 int Scene::vertex_count() const {

@@ -47,6 +47,9 @@ struct Scene {
   Rgb emitted_power() const;
   int emitter_count() const;
   int vertex_count() const;
+  /// 64-bit FNV-1a hash (16 hex digits) of every polygon's vertices and material values: a
+  /// solution records it so it is never applied to a different scene.
+  std::string fingerprint() const;
 };
 
 }  // namespace rad

@@ -42,7 +42,7 @@ const std::vector<std::pair<std::string, ThirdParty>>& third_party() {
       {"VTK", {std::regex(R"(^vtk\w*\.h$)"), {"viz", "cli"}, false}},
       {"OpenEXR", {std::regex(R"(^(Imf|Imath|Iex|OpenEXR/|Imath/))"), {"viz", "cli"}, false}},
       {"OpenMesh", {std::regex(R"(^OpenMesh/)"), {"scene", "radiosity", "octree", "localpass", "viz", "cli"}, false}},
-      {"TBB", {std::regex(R"(^(tbb|oneapi)/)"), {"localpass", "viz", "cli"}, false}},
+      {"TBB", {std::regex(R"(^(tbb|oneapi)/)"), {"radiosity", "localpass", "viz", "cli"}, false}},
       {"nlohmann-json", {std::regex(R"(^nlohmann/)"), {"scene", "viz", "cli"}, false}},
       {"CLI11", {std::regex(R"(^CLI/)"), {"cli"}, false}},
   };

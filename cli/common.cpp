@@ -1,0 +1,52 @@
+#include "cli/common.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+
+#include "scene/scene_loader.h"
+
+namespace rad::cli {
+
+Scene load_scene_reporting(const std::string& path) {
+  Scene scene = load_scene(path);
+  for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
+  return scene;
+}
+
+ThreadLimit::ThreadLimit(int threads) {
+  if (threads > 0) {
+    control_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  }
+}
+
+namespace {
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+ProgressBar::ProgressBar(std::string label) : label_(std::move(label)), enabled_(::isatty(STDERR_FILENO)) {}
+
+ProgressBar::~ProgressBar() { finish(); }
+
+void ProgressBar::update(double done, const std::string& detail) {
+  if (!enabled_) return;
+  const double t = now_seconds();
+  if (t - last_ < 0.1) return;
+  last_ = t;
+  constexpr int kWidth = 30;
+  const int filled = static_cast<int>(std::clamp(done, 0.0, 1.0) * kWidth);
+  std::cerr << "\r" << label_ << " [" << std::string(filled, '#') << std::string(kWidth - filled, ' ') << "] "
+            << detail << "\x1b[K" << std::flush;
+  drawn_ = true;
+}
+
+void ProgressBar::finish() {
+  if (drawn_) std::cerr << "\r\x1b[K" << std::flush;
+  drawn_ = false;
+}
+
+}  // namespace rad::cli

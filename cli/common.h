@@ -1,0 +1,41 @@
+#pragma once
+/// Helpers shared by the subcommands.
+#include <tbb/global_control.h>
+
+#include <memory>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace rad::cli {
+
+/// Loads and validates a scene, printing its warnings to stderr.
+Scene load_scene_reporting(const std::string& path);
+
+/// Limits TBB to `threads` workers while alive (0: all cores).
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads);
+
+ private:
+  std::unique_ptr<tbb::global_control> control_;
+};
+
+/// A one-line progress bar on stderr, drawn only when stderr is a terminal, at most 10 times a
+/// second; finish() clears it.
+class ProgressBar {
+ public:
+  explicit ProgressBar(std::string label);
+  ~ProgressBar();
+  /// `done` in [0, 1]; `detail` is shown after the bar.
+  void update(double done, const std::string& detail);
+  void finish();
+
+ private:
+  std::string label_;
+  bool enabled_;
+  double last_ = -1;
+  bool drawn_ = false;
+};
+
+}  // namespace rad::cli

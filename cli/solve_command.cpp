@@ -1,0 +1,86 @@
+// `radiosity solve SCENE -o SOLUTION.vtp`: mesh the scene and run progressive radiosity.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "radiosity/solver.h"
+#include "scene/ray_caster.h"
+#include "viz/solution_io.h"
+
+namespace rad::cli {
+namespace {
+
+struct SolveOptions {
+  std::string scene;
+  std::string output;
+  SolverSettings settings;
+  int threads = 0;
+};
+
+std::string rgb(const Rgb& v) {
+  std::ostringstream out;
+  out << std::setprecision(6) << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return out.str();
+}
+
+void run_solve(const SolveOptions& o) {
+  const ThreadLimit limit(o.threads);
+  const Scene scene = load_scene_reporting(o.scene);
+  const RayCaster caster(scene);
+  ProgressBar bar("solve");
+  Solution solution = solve(caster, o.settings, [&](const SolveProgress& p) {
+    // Progress on a log scale: from 1 (nothing shot) to the target fraction.
+    const double done = std::log(std::max(p.unshot_fraction, 1e-300)) / std::log(p.target_fraction);
+    std::ostringstream detail;
+    detail << "unshot " << std::setprecision(3) << 100 * p.unshot_fraction << "% (target "
+           << 100 * p.target_fraction << "%), shot " << p.shots << ", elements " << p.elements;
+    bar.update(done, detail.str());
+  });
+  bar.finish();
+  solution.scene_path = o.scene;
+  solution.scene_fingerprint = scene.fingerprint();
+  write_solution(o.output, solution, scene);
+
+  const SolveStats& s = solution.stats;
+  std::cerr << std::setprecision(4) << "solve: " << s.patches << " patches, " << s.elements << " elements ("
+            << s.refined << " split), " << s.shots << " shots, unshot " << 100 * s.unshot_fraction
+            << "% of emitted" << (s.converged ? "" : " (stopped at --max-shots)") << ", " << s.seconds << " s\n"
+            << "energy: emitted " << rgb(s.emitted) << " = absorbed " << rgb(s.absorbed) << " + escaped "
+            << rgb(s.escaped) << " + unshot " << rgb(s.unshot) << "\n"
+            << "wrote " << o.output << "\n";
+}
+
+}  // namespace
+
+void add_solve_command(CLI::App& app, Run& run) {
+  auto o = std::make_shared<SolveOptions>();
+  SolverSettings& s = o->settings;
+  CLI::App* sub = app.add_subcommand("solve", "Mesh the scene and run progressive refinement radiosity; write the solution (.vtp).");
+  sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+  sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
+  sub->add_option("--patch-size", s.patch_size, "Patch edge length, as a fraction of the scene's diagonal")
+      ->check(CLI::Range(1e-4, 1.0))->capture_default_str();
+  sub->add_option("--element-levels", s.element_levels, "Initial elements per patch: 4^levels")
+      ->check(CLI::Range(0, 6))->capture_default_str();
+  sub->add_option("--refine-threshold", s.refine_threshold,
+                  "Split an element when linear interpolation misses its centre's radiosity by more than this "
+                  "fraction of the scene's mean radiosity (0: no adaptive refinement)")
+      ->check(CLI::Range(0.0, 1e6))->capture_default_str();
+  sub->add_option("--min-element-size", s.min_element_size, "Smallest element edge, as a fraction of the diagonal")
+      ->check(CLI::Range(1e-6, 1.0))->capture_default_str();
+  sub->add_option("--unshot", s.unshot_fraction, "Stop when the unshot power is below this fraction of the emitted")
+      ->check(CLI::Range(1e-12, 0.999999))->capture_default_str();
+  sub->add_option("--max-shots", s.max_shots, "Stop after this many shots in any case")
+      ->check(CLI::Range(0, 100000000))->capture_default_str();
+  sub->add_option("--visibility-samples", s.visibility_samples, "Shadow rays per receiver point and shooter")
+      ->check(CLI::Range(1, 4096))->capture_default_str();
+  sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
+  sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sub->callback([o, &run] { run = [o] { run_solve(*o); }; });
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,30 @@
+#pragma once
+/// Meshing scene polygons into patches and elements.
+#include <vector>
+
+#include "radiosity/solution.h"
+#include "scene/scene.h"
+
+namespace rad {
+
+/// Subdivides every scene polygon into patches no longer than `patch_size` (scene units) along
+/// an edge: a convex quad becomes an nu x nv grid (bilinear, so sub-quads stay in its plane);
+/// a triangle is cut into k^2 triangles; any other polygon is triangulated first (ear clipping)
+/// and each triangle cut the same way. Patches keep the parent's orientation and normal.
+std::vector<Patch> make_patches(const Scene& scene, double patch_size);
+
+/// Area and area centroid of a planar 3- or 4-gon.
+void element_geometry(const std::vector<Vec3>& corners, double* area, Vec3* centroid);
+
+/// Appends the four children of element `e` (quad: 2 x 2 at edge midpoints and the bilinear
+/// centre; triangle: midpoint subdivision) and links them. Children inherit radiosity.
+void split_element(std::vector<Element>& elements, int e);
+
+/// Top-level elements of every patch: each patch split `levels` times (4^levels elements).
+/// Returns the whole tree (the patch-level roots are not kept: level-0 elements are the roots).
+std::vector<Element> make_elements(const std::vector<Patch>& patches, int levels);
+
+/// Longest edge of a 3- or 4-gon.
+double longest_edge(const std::vector<Vec3>& corners);
+
+}  // namespace rad

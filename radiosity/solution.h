@@ -1,0 +1,96 @@
+#pragma once
+/// The coarse global solution: patches (shooters) subdivided into elements (receivers), after
+/// Cohen, Chen, Wallace, Greenberg 1988 (substructuring) with adaptive element refinement.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/types.h"
+
+namespace rad {
+
+/// Solver parameters. Sizes are fractions of the scene's bounding-box diagonal, so defaults fit
+/// any scene scale.
+struct SolverSettings {
+  /// Target patch edge length. Quads become near-square grids, other polygons are triangulated
+  /// and each triangle subdivided uniformly. 0.08 gives ~400 patches in the Cornell box.
+  double patch_size = 0.08;
+  /// Each patch starts as 4^element_levels elements.
+  int element_levels = 1;
+  /// Adaptive refinement: during a shot, an element is split in four when linear interpolation
+  /// from its corners mispredicts the radiosity it receives at its centre by more than
+  /// refine_threshold * B_ref, where B_ref is the scene's mean radiosity estimate
+  /// (emitted power / total area / (1 - mean reflectance)). 0 disables refinement. With 0.02
+  /// the Cornell box's 2448 initial elements become ~4000, mostly along shadow boundaries.
+  double refine_threshold = 0.02;
+  /// Elements whose longest edge is below this are not split further.
+  double min_element_size = 0.005;
+  /// Stop when the unshot power is below this fraction of the emitted power (sum over RGB).
+  double unshot_fraction = 1e-3;
+  /// Stop after this many shots in any case.
+  int max_shots = 200000;
+  /// Shadow rays per (receiver point, shooter) pair, stratified and jittered on the shooter;
+  /// rounded up to a square.
+  int visibility_samples = 16;
+  /// Seed of the visibility jitter; the solve is bitwise deterministic for a given seed, thread
+  /// count notwithstanding.
+  uint64_t seed = 1;
+};
+
+/// A shooter: a planar sub-polygon of one scene polygon.
+struct Patch {
+  int polygon = -1;           ///< Parent polygon (index into Scene::polygons).
+  std::vector<Vec3> corners;  ///< 3 or 4 corners, counter-clockwise from the front.
+  Vec3 normal{0, 0, 1};
+  double area = 0;
+  Rgb radiosity = Rgb::Zero();  ///< Area-weighted mean of its elements' radiosity [W/m^2].
+  Rgb unshot = Rgb::Zero();     ///< Radiosity received but not yet shot (Delta B).
+};
+
+/// A receiver: a node of the quadtree that subdivides a patch. Leaves carry the solution.
+struct Element {
+  int patch = -1;
+  int polygon = -1;
+  int parent = -1;              ///< Parent element, -1 for the patch's top-level elements.
+  int first_child = -1;         ///< Children are first_child .. first_child + 3; -1 for a leaf.
+  int level = 0;                ///< Refinement level below the initial elements (0 = initial).
+  std::vector<Vec3> corners;    ///< 3 or 4 corners, counter-clockwise from the front.
+  Vec3 centroid = Vec3::Zero();
+  double area = 0;
+  Rgb radiosity = Rgb::Zero();  ///< B = E + rho H [W/m^2]; meaningful on leaves.
+
+  bool is_leaf() const { return first_child < 0; }
+};
+
+/// What the solve did, and the energy ledger (all powers in W when lengths are metres):
+/// emitted = absorbed + escaped + unshot, where escaped is what shots sent that no element
+/// received (light leaving an open scene, plus reciprocity error of point-sampled receivers).
+struct SolveStats {
+  int shots = 0;
+  int patches = 0;
+  int elements = 0;        ///< Leaves.
+  int refined = 0;         ///< Elements split during the solve.
+  double seconds = 0;
+  Rgb emitted = Rgb::Zero();
+  Rgb absorbed = Rgb::Zero();
+  Rgb escaped = Rgb::Zero();
+  Rgb unshot = Rgb::Zero();
+  double unshot_fraction = 0;  ///< sum(unshot) / sum(emitted)
+  bool converged = false;      ///< Stopped by unshot_fraction rather than max_shots.
+};
+
+/// A solved (or loaded) radiosity solution.
+struct Solution {
+  SolverSettings settings;
+  SolveStats stats;
+  std::vector<Patch> patches;
+  std::vector<Element> elements;  ///< The whole quadtree; leaves hold the solution.
+  Rgb ambient = Rgb::Zero();      ///< Cohen et al. 1988 ambient term, for display only.
+  std::string scene_path;         ///< The scene file solved, as given.
+  std::string scene_fingerprint;  ///< Hash of the scene's polygons (see scene_fingerprint()).
+
+  /// Indices of the leaf elements, in index order.
+  std::vector<int> leaves() const;
+};
+
+}  // namespace rad

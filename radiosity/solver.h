@@ -1,0 +1,38 @@
+#pragma once
+/// Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) with substructuring
+/// and adaptive element refinement.
+#include <functional>
+
+#include "radiosity/solution.h"
+#include "scene/ray_caster.h"
+
+namespace rad {
+
+/// Reported after every shot.
+struct SolveProgress {
+  int shots = 0;
+  double unshot_fraction = 1;  ///< Current unshot power / emitted power.
+  double target_fraction = 0;  ///< Where the solve stops.
+  int elements = 0;            ///< Current leaves.
+};
+
+/// Meshes the caster's scene and solves it:
+///   1. patches of settings.patch_size, each split into 4^element_levels elements;
+///   2. repeatedly shoot the patch with the largest unshot power sum_c(Delta B_c) * A: every
+///      leaf element e receives H_e = Delta B * FF(x_e, patch) * V, with FF the exact unoccluded
+///      point-to-patch form factor at the element's centroid (Lambert) and V the fraction of
+///      `visibility_samples` stratified jittered shadow rays to the patch that are unblocked;
+///      B_e += rho_e H_e and the element's patch gains rho_e H_e A_e / A_patch of unshot
+///      radiosity. Elements where this shot's radiosity is far from linear are split first
+///      (see SolverSettings::refine_threshold);
+///   3. stop when the unshot power falls below settings.unshot_fraction of the emitted power.
+/// Parallel over receivers (TBB); bitwise deterministic for a given seed whatever the thread
+/// count. Throws Error for invalid settings.
+Solution solve(const RayCaster& caster, const SolverSettings& settings,
+               const std::function<void(const SolveProgress&)>& progress = {});
+
+/// Mean radiosity estimate used to scale refinement: per channel, emitted power / total area /
+/// (1 - area-weighted mean reflectance); the largest channel.
+double reference_radiosity(const Scene& scene);
+
+}  // namespace rad
