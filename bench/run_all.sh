@@ -41,3 +41,17 @@ PY
 } > "$out/ray_casting.md"
 rm -f "$json"
 echo "wrote $out/ray_casting.md" >&2
+
+# Progressive radiosity (Cornell box at three patch sizes, default settings otherwise)
+table=$("$build/bench/solve_bench")
+{
+  echo "# Progressive radiosity on the Cornell box"
+  echo
+  echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/solve_bench\`): \`radiosity solve\` with default"
+  echo "settings (unshot 1e-3, 2 x 2 initial elements per patch, refinement threshold 0.05, 3 neighbour"
+  echo "passes, 16 shadow rays) but the patch size; all cores."
+  machine
+  echo
+  echo "$table"
+} > "$out/solve.md"
+echo "wrote $out/solve.md" >&2

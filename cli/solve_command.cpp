@@ -67,9 +67,12 @@ void add_solve_command(CLI::App& app, Run& run) {
   sub->add_option("--element-levels", s.element_levels, "Initial elements per patch: 4^levels")
       ->check(CLI::Range(0, 6))->capture_default_str();
   sub->add_option("--refine-threshold", s.refine_threshold,
-                  "Split an element when linear interpolation misses its centre's radiosity by more than this "
-                  "fraction of the scene's mean radiosity (0: no adaptive refinement)")
+                  "Split an element where its radiosity is off linear (during a shot) or off its neighbours' "
+                  "(after convergence) by more than this fraction of the local radiosity (0: no adaptive refinement)")
       ->check(CLI::Range(0.0, 1e6))->capture_default_str();
+  sub->add_option("--refine-passes", s.refine_passes,
+                  "After convergence, passes that split elements differing from a neighbour by more than the threshold")
+      ->check(CLI::Range(0, 20))->capture_default_str();
   sub->add_option("--min-element-size", s.min_element_size, "Smallest element edge, as a fraction of the diagonal")
       ->check(CLI::Range(1e-6, 1.0))->capture_default_str();
   sub->add_option("--unshot", s.unshot_fraction, "Stop when the unshot power is below this fraction of the emitted")

@@ -125,6 +125,7 @@ void split_element(std::vector<Element>& elements, int e) {
     child.parent = e;
     child.level = parent.level + 1;
     child.radiosity = parent.radiosity;
+    child.irradiance = parent.irradiance;
     element_geometry(corners, &child.area, &child.centroid);
     child.corners = std::move(corners);
     elements.push_back(std::move(child));

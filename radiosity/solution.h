@@ -17,12 +17,16 @@ struct SolverSettings {
   double patch_size = 0.08;
   /// Each patch starts as 4^element_levels elements.
   int element_levels = 1;
-  /// Adaptive refinement: during a shot, an element is split in four when linear interpolation
-  /// from its corners mispredicts the radiosity it receives at its centre by more than
-  /// refine_threshold * B_ref, where B_ref is the scene's mean radiosity estimate
-  /// (emitted power / total area / (1 - mean reflectance)). 0 disables refinement. With 0.02
-  /// the Cornell box's 2448 initial elements become ~4000, mostly along shadow boundaries.
-  double refine_threshold = 0.02;
+  /// Adaptive refinement limit, relative to the local radiosity B clamped to [0.1, 1] x B_ref
+  /// (B_ref: the scene's mean radiosity estimate, emitted power / total area /
+  /// (1 - mean reflectance)). During a shot, an element is split in four when linear
+  /// interpolation from its corners misses the radiosity it receives at its centre by more than
+  /// refine_threshold * clamp(B); after convergence, when it differs from a neighbour by more.
+  /// 0 disables refinement.
+  double refine_threshold = 0.05;
+  /// After convergence, up to this many passes split elements whose radiosity differs from a
+  /// mesh neighbour's by more than the same limit (children re-gather exactly), then shoot on.
+  int refine_passes = 3;
   /// Elements whose longest edge is below this are not split further.
   double min_element_size = 0.005;
   /// Stop when the unshot power is below this fraction of the emitted power (sum over RGB).
@@ -45,6 +49,7 @@ struct Patch {
   double area = 0;
   Rgb radiosity = Rgb::Zero();  ///< Area-weighted mean of its elements' radiosity [W/m^2].
   Rgb unshot = Rgb::Zero();     ///< Radiosity received but not yet shot (Delta B).
+  Rgb shot = Rgb::Zero();       ///< Radiosity shot so far (sum of its Delta B at each shot).
 };
 
 /// A receiver: a node of the quadtree that subdivides a patch. Leaves carry the solution.
@@ -57,7 +62,8 @@ struct Element {
   std::vector<Vec3> corners;    ///< 3 or 4 corners, counter-clockwise from the front.
   Vec3 centroid = Vec3::Zero();
   double area = 0;
-  Rgb radiosity = Rgb::Zero();  ///< B = E + rho H [W/m^2]; meaningful on leaves.
+  Rgb radiosity = Rgb::Zero();   ///< B = E + rho H [W/m^2]; meaningful on leaves.
+  Rgb irradiance = Rgb::Zero();  ///< H received so far [W/m^2] (kept for black receivers too).
 
   bool is_leaf() const { return first_child < 0; }
 };

@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +11,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/mesher.h"
+#include "radiosity/patch_mesh.h"
 #include "scene/error.h"
 
 namespace rad {
@@ -48,9 +51,8 @@ Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
 
 class Shooter {
  public:
-  Shooter(const RayCaster& caster, const Solution& solution, const SolverSettings& settings,
-          double epsilon)
-      : caster_(caster), solution_(solution), epsilon_(epsilon) {
+  Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
+      : caster_(caster), epsilon_(epsilon) {
     side_ = std::max(1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
     seed_ = settings.seed;
   }
@@ -84,11 +86,9 @@ class Shooter {
     return ff * visible / (side_ * side_);
   }
 
-  const Solution& solution() const { return solution_; }
 
  private:
   const RayCaster& caster_;
-  const Solution& solution_;
   double epsilon_;
   int side_ = 4;
   uint64_t seed_ = 1;
@@ -103,6 +103,7 @@ void validate(const SolverSettings& s) {
   if (!(s.patch_size > 0 && s.patch_size <= 1)) bad("patch_size must be in (0, 1]");
   if (s.element_levels < 0 || s.element_levels > 6) bad("element_levels must be in [0, 6]");
   if (!(s.refine_threshold >= 0)) bad("refine_threshold must be >= 0");
+  if (s.refine_passes < 0 || s.refine_passes > 20) bad("refine_passes must be in [0, 20]");
   if (!(s.min_element_size > 0)) bad("min_element_size must be > 0");
   if (!(s.unshot_fraction > 0 && s.unshot_fraction < 1)) bad("unshot_fraction must be in (0, 1)");
   if (s.max_shots < 0) bad("max_shots must be >= 0");
@@ -123,6 +124,294 @@ double reference_radiosity(const Scene& scene) {
   return reference;
 }
 
+namespace {
+
+/// The state of one solve and its steps. Every parallel step writes per-element slots; every
+/// sum is taken serially in index order, so results do not depend on the thread count.
+class ProgressiveSolver {
+ public:
+  ProgressiveSolver(const RayCaster& caster, const SolverSettings& settings)
+      : scene_(caster.scene()),
+        settings_(settings),
+        diagonal_(scene_.bounds().diagonal()),
+        reference_(reference_radiosity(scene_)),
+        min_size_(settings.min_element_size * diagonal_),
+        rays_(caster, settings, 1e-5 * diagonal_) {  // offsets ~100x float precision
+    solution_.settings = settings;
+    solution_.patches = make_patches(scene_, settings.patch_size * diagonal_);
+    solution_.elements = make_elements(solution_.patches, settings.element_levels);
+    // Initial state: each patch's unshot radiosity and each element's radiosity is its emission.
+    for (Patch& p : patches()) {
+      p.unshot = material(p.polygon).emission;
+      p.radiosity = p.unshot;
+      stats().emitted += p.unshot * p.area;
+      double area;
+      Vec3 centroid;
+      element_geometry(p.corners, &area, &centroid);
+      patch_bounds_.push_back(bounding_sphere(p.corners, centroid));
+    }
+    for (Element& e : elements()) e.radiosity = material(e.polygon).emission;
+    leaves_ = solution_.leaves();
+  }
+
+  /// Shoots until the unshot power is below the target (or the shot limit).
+  void shoot_until_converged(const std::function<void(const SolveProgress&)>& progress) {
+    const double emitted = stats().emitted.sum();
+    while (true) {
+      int shooter = -1;
+      double largest = 0, remaining = 0;
+      for (size_t p = 0; p < patches().size(); ++p) {
+        const double power = unshot_power(patches()[p]);
+        remaining += power;
+        if (power > largest) largest = power, shooter = static_cast<int>(p);  // ties: lowest index
+      }
+      stats().unshot_fraction = emitted > 0 ? remaining / emitted : 0;
+      stats().converged = shooter < 0 || stats().unshot_fraction <= settings_.unshot_fraction;
+      if (stats().converged || stats().shots >= settings_.max_shots) return;
+      shoot(shooter);
+      if (progress) {
+        SolveProgress report;
+        report.shots = stats().shots;
+        report.target_fraction = settings_.unshot_fraction;
+        report.elements = static_cast<int>(leaves_.size());
+        double after = 0;
+        for (const Patch& p : patches()) after += unshot_power(p);
+        report.unshot_fraction = emitted > 0 ? after / emitted : 0;
+        progress(report);
+      }
+    }
+  }
+
+  /// Refinement on the accumulated solution (cf. Cohen et al. 1986): an element is split when
+  /// its radiosity differs by more than the refinement limit from the plane fitted through its
+  /// mesh neighbours' radiosities (least squares over their centroids). Gouraud display
+  /// reproduces linear variation, so only what a plane misses (shadow edges, corners, also
+  /// those cast by indirect light that no single shot shows) is refined. Children re-gather.
+  /// Returns the number of elements split.
+  int refine_by_neighbours() {
+    if (!refinement_enabled()) return 0;
+    const ElementMesh mesh(solution_, 1e-9 * diagonal_);
+    const PatchMesh& m = mesh.mesh();
+    std::vector<char> split(mesh.face_count(), 0);
+    tbb::parallel_for(0, mesh.face_count(), [&](int f) {
+      const Element& el = solution_.elements[mesh.element(f)];
+      if (!splittable(el)) return;
+      std::vector<int> neighbours;
+      for (const auto h : m.fh_range(m.face_handle(f))) {
+        const auto opposite = h.opp().face();
+        if (!opposite.is_valid()) continue;
+        const int g = mesh.element(opposite.idx());
+        if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end()) neighbours.push_back(g);
+      }
+      if (neighbours.size() < 3) return;
+      // Fit B(u, v) = a + b u + c v through the neighbours, in the element's plane around its
+      // centroid: the prediction at the centroid is a.
+      const PlaneFrame frame(el.centroid, solution_.patches[el.patch].normal);
+      Eigen::MatrixXd A(neighbours.size(), 3);
+      Eigen::MatrixXd B(neighbours.size(), 3);
+      for (size_t i = 0; i < neighbours.size(); ++i) {
+        const Element& n = solution_.elements[neighbours[i]];
+        const Vec2 uv = frame.to_2d(n.centroid);
+        A.row(i) << 1.0, uv.x(), uv.y();
+        B.row(i) = n.radiosity.transpose();
+      }
+      const Eigen::Matrix3d normal = A.transpose() * A;
+      Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
+      if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-10)) return;  // neighbours in a line
+      const Eigen::Matrix3d fit = ldlt.solve(A.transpose() * B);
+      const Rgb predicted = fit.row(0).transpose();
+      const double miss = (el.radiosity - predicted).cwiseAbs().maxCoeff();
+      split[f] = miss > limit(el.radiosity.cwiseMax(predicted).maxCoeff());
+    });
+    std::vector<int> children;
+    for (int f = 0; f < mesh.face_count(); ++f) {
+      if (split[f]) split_into(mesh.element(f), children);
+    }
+    if (children.empty()) return 0;
+    regather(children);
+    leaves_ = solution_.leaves();
+    return static_cast<int>(children.size() / 4);
+  }
+
+  /// Patch radiosities, the ledger's unshot term and the display ambient term.
+  Solution finish(double seconds) {
+    Rgb area_rho = Rgb::Zero();
+    double total_area = 0;
+    for (Patch& p : patches()) p.radiosity = Rgb::Zero();
+    for (const int e : leaves_) {
+      const Element& el = elements()[e];
+      patches()[el.patch].radiosity += el.radiosity * (el.area / patches()[el.patch].area);
+    }
+    for (const Patch& p : patches()) {
+      stats().unshot += p.unshot * p.area;
+      area_rho += material(p.polygon).reflectance * p.area;
+      total_area += p.area;
+    }
+    // Cohen et al. 1988: the unshot power spread over the scene and multiplied out by the
+    // interreflection factor R = 1 / (1 - mean rho). Display only, never in the values.
+    for (int c = 0; c < 3; ++c) {
+      solution_.ambient[c] = stats().unshot[c] / total_area / (1 - area_rho[c] / total_area);
+    }
+    stats().patches = static_cast<int>(patches().size());
+    stats().elements = static_cast<int>(leaves_.size());
+    stats().seconds = seconds;
+    return std::move(solution_);
+  }
+
+ private:
+  std::vector<Patch>& patches() { return solution_.patches; }
+  std::vector<Element>& elements() { return solution_.elements; }
+  SolveStats& stats() { return solution_.stats; }
+  const Material& material(int polygon) const { return scene_.materials[scene_.polygons[polygon].material]; }
+  // A re-gather can leave a patch's unshot radiosity slightly negative (its children hold a
+  // little less than their parent did); only positive power is shot or counted as remaining.
+  static double unshot_power(const Patch& p) { return p.unshot.cwiseMax(0.0).sum() * p.area; }
+
+  bool refinement_enabled() const { return settings_.refine_threshold > 0 && reference_ > 0; }
+  /// Errors are seen relative to the local brightness: the limit follows the local radiosity,
+  /// clamped to [0.1, 1] x B_ref so that dark regions are resolved but black ones are not
+  /// chased forever.
+  double limit(double local_radiosity) const {
+    return settings_.refine_threshold * std::clamp(local_radiosity, 0.1 * reference_, reference_);
+  }
+  bool splittable(const Element& e) const { return longest_edge(e.corners) > min_size_; }
+  void split_into(int e, std::vector<int>& children) {
+    split_element(elements(), e);
+    const int first = elements()[e].first_child;
+    for (int c = 0; c < 4; ++c) children.push_back(first + c);
+    ++stats().refined;
+  }
+  double visible_ff(const Element& el, const Patch& source, uint64_t key) const {
+    return rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal, el.polygon, source, key);
+  }
+
+  /// One shot of patch `shooter`'s unshot radiosity to every leaf.
+  void shoot(int shooter) {
+    Patch& source = patches()[shooter];
+    const Rgb delta = source.unshot.cwiseMax(0.0);
+    source.unshot -= delta;
+    const int shot = stats().shots;
+
+    // Receive at every leaf's centroid; split where this shot is far from linear.
+    ff_.resize(elements().size());
+    receive(leaves_, source, shot);
+    if (refinement_enabled()) refine_during_shot(shooter, delta, shot);
+
+    // Distribute, serially in element order (deterministic sums).
+    Rgb received = Rgb::Zero();
+    for (const int e : leaves_) {
+      if (ff_[e] == 0) continue;
+      Element& el = elements()[e];
+      const Rgb rho = material(el.polygon).reflectance;
+      const Rgb irradiance = delta * ff_[e];
+      const Rgb reflected = rho.cwiseProduct(irradiance);
+      el.radiosity += reflected;
+      el.irradiance += irradiance;
+      received += irradiance * el.area;
+      stats().absorbed += (Rgb::Ones() - rho).cwiseProduct(irradiance) * el.area;
+      Patch& owner = patches()[el.patch];
+      owner.unshot += reflected * (el.area / owner.area);
+    }
+    stats().escaped += delta * source.area - received;
+    source.shot += delta;
+    ++stats().shots;
+  }
+
+  void receive(const std::vector<int>& which, const Patch& source, int shot) {
+    tbb::parallel_for(size_t(0), which.size(), [&](size_t k) {
+      const int e = which[k];
+      ff_[e] = visible_ff(elements()[e], source, key_of(shot, e, 0));
+    });
+  }
+
+  /// Splits leaves where linear interpolation from the corners misses this shot's radiosity
+  /// at the centre by more than the limit; children receive the shot and re-gather.
+  void refine_during_shot(int shooter, const Rgb& delta, int shot) {
+    const Patch& source = patches()[shooter];
+    const Sphere& sb = patch_bounds_[shooter];
+    std::vector<int> candidates = leaves_;
+    while (!candidates.empty()) {
+      std::vector<char> split(candidates.size(), 0);
+      tbb::parallel_for(size_t(0), candidates.size(), [&](size_t k) {
+        const int e = candidates[k];
+        const Element& el = elements()[e];
+        const Rgb rho = material(el.polygon).reflectance;
+        const double scale = rho.maxCoeff() * delta.maxCoeff();
+        const double lim = limit((el.radiosity + rho.cwiseProduct(delta) * ff_[e]).maxCoeff());
+        if (scale <= lim || !splittable(el)) return;
+        // Largest possible form factor from this element to the shooter (bounding spheres):
+        // skip pairs that cannot reach the limit.
+        const Sphere eb = bounding_sphere(el.corners, el.centroid);
+        const double gap = (eb.centre - sb.centre).norm() - eb.radius - sb.radius;
+        const double ff_max = gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
+        if (scale * ff_max <= lim) return;
+        // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
+        double mean = 0;
+        for (size_t c = 0; c < el.corners.size(); ++c) {
+          const Vec3 x = el.corners[c] + 1e-3 * (el.centroid - el.corners[c]);
+          mean += rays_.visible_form_factor(x, solution_.patches[el.patch].normal, el.polygon, source,
+                                            key_of(shot, e, static_cast<int>(c) + 1));
+        }
+        mean /= static_cast<double>(el.corners.size());
+        split[k] = scale * std::abs(ff_[e] - mean) > lim;
+      });
+      std::vector<int> children;
+      for (size_t k = 0; k < candidates.size(); ++k) {
+        if (split[k]) split_into(candidates[k], children);
+      }
+      if (children.empty()) break;
+      ff_.resize(elements().size());
+      receive(children, source, shot);
+      regather(children);
+      candidates = std::move(children);
+    }
+    leaves_ = solution_.leaves();
+  }
+
+  /// A new child re-gathers everything shot so far, H = sum_j S_j FF(x, patch j), with S_j the
+  /// radiosity patch j has shot. The form factor of a pair does not change between shots, so
+  /// this is exactly what the child would hold had it existed from the start; inheriting the
+  /// parent's value instead would mix form factors taken at two points, which can sum to more
+  /// than 1 (the furnace then overshoots). The change in received power goes through the
+  /// ledger: absorbed, the owning patch's unshot radiosity, and escaped.
+  void regather(const std::vector<int>& children) {
+    const int shot = stats().shots;
+    std::vector<Rgb> gathered(children.size(), Rgb::Zero());
+    tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
+      const Element& el = elements()[children[k]];
+      for (size_t j = 0; j < solution_.patches.size(); ++j) {
+        const Patch& p = solution_.patches[j];
+        if (p.shot == Rgb::Zero()) continue;
+        gathered[k] += p.shot * visible_ff(el, p, key_of(shot, children[k], 8 + static_cast<int>(j)));
+      }
+    });
+    for (size_t k = 0; k < children.size(); ++k) {
+      Element& el = elements()[children[k]];
+      const Rgb rho = material(el.polygon).reflectance;
+      const Rgb power = (gathered[k] - el.irradiance) * el.area;  // against what it inherited
+      el.irradiance = gathered[k];
+      el.radiosity = material(el.polygon).emission + rho.cwiseProduct(gathered[k]);
+      stats().absorbed += (Rgb::Ones() - rho).cwiseProduct(power);
+      stats().escaped -= power;
+      Patch& owner = patches()[el.patch];
+      owner.unshot += rho.cwiseProduct(power) / owner.area;
+    }
+  }
+
+  const Scene& scene_;
+  const SolverSettings settings_;
+  const double diagonal_;
+  const double reference_;
+  const double min_size_;
+  Solution solution_;
+  const Shooter rays_;
+  std::vector<Sphere> patch_bounds_;
+  std::vector<int> leaves_;
+  std::vector<double> ff_;  ///< This shot's visible form factor per element.
+};
+
+}  // namespace
+
 std::vector<int> Solution::leaves() const {
   std::vector<int> out;
   for (size_t e = 0; e < elements.size(); ++e) {
@@ -135,172 +424,13 @@ Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress) {
   validate(settings);
   const auto start = std::chrono::steady_clock::now();
-  const Scene& scene = caster.scene();
-  const double diagonal = scene.bounds().diagonal();
-  Solution solution;
-  solution.settings = settings;
-  solution.patches = make_patches(scene, settings.patch_size * diagonal);
-  solution.elements = make_elements(solution.patches, settings.element_levels);
-  std::vector<Patch>& patches = solution.patches;
-  std::vector<Element>& elements = solution.elements;
-  SolveStats& stats = solution.stats;
-
-  // Initial state: every patch's unshot radiosity is its emission, every element's radiosity.
-  auto material_of = [&](int polygon) -> const Material& { return scene.materials[scene.polygons[polygon].material]; };
-  for (Patch& p : patches) {
-    p.unshot = material_of(p.polygon).emission;
-    p.radiosity = p.unshot;
-    stats.emitted += p.unshot * p.area;
+  ProgressiveSolver solver(caster, settings);
+  solver.shoot_until_converged(progress);
+  for (int pass = 0; pass < settings.refine_passes; ++pass) {
+    if (solver.refine_by_neighbours() == 0) break;
+    solver.shoot_until_converged(progress);
   }
-  for (Element& e : elements) e.radiosity = material_of(e.polygon).emission;
-  const double emitted_sum = stats.emitted.sum();
-
-  const double epsilon = 1e-5 * diagonal;  // shadow-ray offsets: ~100x float precision
-  const double refine_limit = settings.refine_threshold * reference_radiosity(scene);
-  const double min_size = settings.min_element_size * diagonal;
-  const Shooter shooter_rays(caster, solution, settings, epsilon);
-  std::vector<Sphere> patch_bounds;
-  for (const Patch& p : patches) {
-    double area;
-    Vec3 centroid;
-    element_geometry(p.corners, &area, &centroid);
-    patch_bounds.push_back(bounding_sphere(p.corners, centroid));
-  }
-
-  std::vector<int> leaves = solution.leaves();
-  std::vector<double> ff;  // this shot's visible form factor per element
-  auto unshot_power = [&](const Patch& p) { return p.unshot.sum() * p.area; };
-
-  SolveProgress report;
-  report.target_fraction = settings.unshot_fraction;
-  while (true) {
-    // Choose the shooter: the largest unshot power (ties: the lowest index).
-    int shooter = -1;
-    double largest = 0, remaining = 0;
-    for (size_t p = 0; p < patches.size(); ++p) {
-      const double power = unshot_power(patches[p]);
-      remaining += power;
-      if (power > largest) largest = power, shooter = static_cast<int>(p);
-    }
-    stats.unshot_fraction = emitted_sum > 0 ? remaining / emitted_sum : 0;
-    if (shooter < 0 || stats.unshot_fraction <= settings.unshot_fraction) {
-      stats.converged = true;
-      break;
-    }
-    if (stats.shots >= settings.max_shots) break;
-
-    Patch& source = patches[shooter];
-    const Rgb delta = source.unshot;
-    source.unshot = Rgb::Zero();
-    const int shot = stats.shots;
-
-    // Receive at every leaf's centroid.
-    ff.resize(elements.size());
-    auto receive = [&](const std::vector<int>& which) {
-      tbb::parallel_for(size_t(0), which.size(), [&](size_t k) {
-        const int e = which[k];
-        const Element& el = elements[e];
-        ff[e] = shooter_rays.visible_form_factor(el.centroid, patches[el.patch].normal, el.polygon, source,
-                                                 key_of(shot, e, 0));
-      });
-    };
-    receive(leaves);
-
-    // Adaptive refinement: split leaves where this shot's radiosity is far from linear.
-    if (refine_limit > 0) {
-      std::vector<int> candidates = leaves;
-      const Sphere& sb = patch_bounds[shooter];
-      while (!candidates.empty()) {
-        std::vector<char> split(candidates.size(), 0);
-        tbb::parallel_for(size_t(0), candidates.size(), [&](size_t k) {
-          const int e = candidates[k];
-          const Element& el = elements[e];
-          const double rho = material_of(el.polygon).reflectance.maxCoeff();
-          const double scale = rho * delta.maxCoeff();
-          if (scale <= refine_limit || longest_edge(el.corners) <= min_size) return;
-          // Largest possible form factor from this element to the shooter (bounding spheres):
-          // skip pairs that cannot reach the limit.
-          const Sphere eb = bounding_sphere(el.corners, el.centroid);
-          const double gap = (eb.centre - sb.centre).norm() - eb.radius - sb.radius;
-          const double ff_max = gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
-          if (scale * ff_max <= refine_limit) return;
-          // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
-          double mean = 0;
-          for (size_t c = 0; c < el.corners.size(); ++c) {
-            const Vec3 x = el.corners[c] + 1e-3 * (el.centroid - el.corners[c]);
-            mean += shooter_rays.visible_form_factor(x, patches[el.patch].normal, el.polygon, source,
-                                                     key_of(shot, e, static_cast<int>(c) + 1));
-          }
-          mean /= static_cast<double>(el.corners.size());
-          split[k] = scale * std::abs(ff[e] - mean) > refine_limit;
-        });
-        std::vector<int> children;
-        for (size_t k = 0; k < candidates.size(); ++k) {
-          if (!split[k]) continue;
-          split_element(elements, candidates[k]);
-          const int first = elements[candidates[k]].first_child;
-          for (int c = 0; c < 4; ++c) children.push_back(first + c);
-          ++stats.refined;
-        }
-        if (children.empty()) break;
-        ff.resize(elements.size());
-        receive(children);
-        candidates = std::move(children);
-      }
-      leaves = solution.leaves();
-    }
-
-    // Distribute, serially in element order (deterministic sums).
-    const Rgb shot_power = delta * source.area;
-    Rgb received = Rgb::Zero();
-    for (const int e : leaves) {
-      Element& el = elements[e];
-      if (ff[e] == 0) continue;
-      const Rgb rho = material_of(el.polygon).reflectance;
-      const Rgb irradiance = delta * ff[e];
-      const Rgb reflected = rho.cwiseProduct(irradiance);
-      el.radiosity += reflected;
-      received += irradiance * el.area;
-      stats.absorbed += (Rgb::Ones() - rho).cwiseProduct(irradiance) * el.area;
-      Patch& owner = patches[el.patch];
-      owner.unshot += reflected * (el.area / owner.area);
-    }
-    stats.escaped += shot_power - received;
-    ++stats.shots;
-
-    if (progress) {
-      report.shots = stats.shots;
-      double after = 0;
-      for (const Patch& p : patches) after += unshot_power(p);
-      report.unshot_fraction = after / emitted_sum;
-      report.elements = static_cast<int>(leaves.size());
-      progress(report);
-    }
-  }
-
-  // Patch radiosity: area-weighted mean of its leaves; ledger and ambient term.
-  Rgb area_rho = Rgb::Zero();
-  double total_area = 0;
-  for (Patch& p : patches) p.radiosity = Rgb::Zero();
-  for (const int e : leaves) {
-    const Element& el = elements[e];
-    patches[el.patch].radiosity += el.radiosity * (el.area / patches[el.patch].area);
-  }
-  for (const Patch& p : patches) {
-    stats.unshot += p.unshot * p.area;
-    area_rho += material_of(p.polygon).reflectance * p.area;
-    total_area += p.area;
-  }
-  // Cohen et al. 1988: the unshot power, spread over the scene and multiplied out by the
-  // interreflection factor R = 1 / (1 - mean rho). Display only; never in the solution values.
-  for (int c = 0; c < 3; ++c) {
-    const double mean_rho = area_rho[c] / total_area;
-    solution.ambient[c] = stats.unshot[c] / total_area / (1 - mean_rho);
-  }
-  stats.patches = static_cast<int>(patches.size());
-  stats.elements = static_cast<int>(leaves.size());
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return solution;
+  return solver.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace rad

@@ -47,7 +47,8 @@ void add_rgb(vtkDoubleArray* a, const Rgb& v) { a->InsertNextTuple3(v.x(), v.y()
 
 Json settings_json(const SolverSettings& s) {
   return {{"patch_size", s.patch_size},         {"element_levels", s.element_levels},
-          {"refine_threshold", s.refine_threshold}, {"min_element_size", s.min_element_size},
+          {"refine_threshold", s.refine_threshold}, {"refine_passes", s.refine_passes},
+          {"min_element_size", s.min_element_size},
           {"unshot_fraction", s.unshot_fraction}, {"max_shots", s.max_shots},
           {"visibility_samples", s.visibility_samples}, {"seed", s.seed}};
 }
@@ -251,6 +252,7 @@ Solution read_solution(const std::filesystem::path& file) {
     s.settings.patch_size = settings.at("patch_size");
     s.settings.element_levels = settings.at("element_levels");
     s.settings.refine_threshold = settings.at("refine_threshold");
+    s.settings.refine_passes = settings.at("refine_passes");
     s.settings.min_element_size = settings.at("min_element_size");
     s.settings.unshot_fraction = settings.at("unshot_fraction");
     s.settings.max_shots = settings.at("max_shots");

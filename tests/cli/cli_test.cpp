@@ -37,6 +37,13 @@ fs::path scratch() {
   return dir;
 }
 
+/// A path in single quotes for the shell.
+std::string quoted(const fs::path& path) {
+  std::string q(1, '\'');
+  q.append(path.string()).push_back('\'');
+  return q;
+}
+
 /// Runs `radiosity ARGS` with stdout and stderr captured separately.
 Result run(const std::string& args) {
   const fs::path dir = fs::temp_directory_path() / "rad_cli_capture";
@@ -54,7 +61,7 @@ Result run(const std::string& args) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* args : {"--help", "info --help", "render --help"}) {
+  for (const char* args : {"--help", "info --help", "solve --help", "render --help"}) {
     const Result r = run(args);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_NE(r.out.find("Usage:"), std::string::npos) << args << "\n" << r.out;
@@ -128,6 +135,43 @@ TEST(Cli, RenderWithoutCameraOrWithBadOutputExitsOne) {
           (dir / "file/x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("file/x.exr"), std::string::npos) << r.err;
+}
+
+TEST(Cli, SolveThenRenderPatches) {
+  const fs::path dir = scratch();
+  const std::string scene = quoted(kRoot / "data/light-over-floor/scene.json");
+  Result r = run("solve " + scene + " --patch-size 0.2 -o '" + (dir / "s.vtp").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("solve: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("energy: emitted"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("\r"), std::string::npos) << "no progress bar when stderr is not a terminal";
+  r = run("render " + scene + " --method patches --solution '" + (dir / "s.vtp").string() +
+          "' --width 48 --height 32 -o '" + (dir / "p.exr").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const rad::Image image = rad::read_exr(dir / "p.exr");
+  ASSERT_EQ(image.width, 48);
+  // The floor under the light is lit; some pixel is brighter than the ambient-only level.
+  double brightest = 0;
+  for (const auto& p : image.pixels) brightest = std::max(brightest, p.maxCoeff());
+  EXPECT_GT(brightest, 0.05);
+}
+
+TEST(Cli, RenderPatchesRefusesAMissingOrMismatchedSolution) {
+  const fs::path dir = scratch();
+  const std::string floor = quoted(kRoot / "data/light-over-floor/scene.json");
+  Result r = run("render " + floor + " --method patches -o '" + (dir / "x.exr").string() + "'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("needs --solution"), std::string::npos) << r.err;
+  r = run("solve " + floor + " --patch-size 0.3 --refine-threshold 0 -o '" + (dir / "floor.vtp").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() + "' --method patches --solution '" +
+          (dir / "floor.vtp").string() + "' -o '" + (dir / "x.exr").string() + "'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("solved for a different scene"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "x.exr"));
+  // Bad solver settings are usage errors.
+  r = run("solve " + floor + " --patch-size 0 -o '" + (dir / "y.vtp").string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
 }  // namespace
