@@ -26,7 +26,10 @@ demo: build
 	$(RADIOSITY) info data/cornell-box/scene.json
 	$(RADIOSITY) render data/cornell-box/scene.json --method albedo -o $(DEMO_OUT)/albedo.exr
 	$(RADIOSITY) render data/cornell-box/scene.json --method facing -o $(DEMO_OUT)/facing.exr
-	@echo "demo: images in $(DEMO_OUT)/ (albedo.exr/.png, facing.exr/.png)"
+	$(RADIOSITY) solve data/cornell-box/scene.json -o $(DEMO_OUT)/solution.vtp
+	$(RADIOSITY) render data/cornell-box/scene.json --method patches --solution $(DEMO_OUT)/solution.vtp \
+	  -o $(DEMO_OUT)/patches.exr
+	@echo "demo: in $(DEMO_OUT)/: solution.vtp (open in ParaView), patches.exr/.png, albedo, facing"
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)

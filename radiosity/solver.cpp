@@ -264,8 +264,9 @@ class ProgressiveSolver {
   SolveStats& stats() { return solution_.stats; }
   const Material& material(int polygon) const { return scene_.materials[scene_.polygons[polygon].material]; }
   // A re-gather can leave a patch's unshot radiosity slightly negative (its children hold a
-  // little less than their parent did); only positive power is shot or counted as remaining.
-  static double unshot_power(const Patch& p) { return p.unshot.cwiseMax(0.0).sum() * p.area; }
+  // little less than their parent did: the patch has over-shot). Negative unshot radiosity is
+  // shot like positive, as a correction, so the remaining power is measured in absolute value.
+  static double unshot_power(const Patch& p) { return p.unshot.cwiseAbs().sum() * p.area; }
 
   bool refinement_enabled() const { return settings_.refine_threshold > 0 && reference_ > 0; }
   /// Errors are seen relative to the local brightness: the limit follows the local radiosity,
@@ -288,8 +289,8 @@ class ProgressiveSolver {
   /// One shot of patch `shooter`'s unshot radiosity to every leaf.
   void shoot(int shooter) {
     Patch& source = patches()[shooter];
-    const Rgb delta = source.unshot.cwiseMax(0.0);
-    source.unshot -= delta;
+    const Rgb delta = source.unshot;
+    source.unshot = Rgb::Zero();
     const int shot = stats().shots;
 
     // Receive at every leaf's centroid; split where this shot is far from linear.
@@ -336,8 +337,8 @@ class ProgressiveSolver {
         const int e = candidates[k];
         const Element& el = elements()[e];
         const Rgb rho = material(el.polygon).reflectance;
-        const double scale = rho.maxCoeff() * delta.maxCoeff();
-        const double lim = limit((el.radiosity + rho.cwiseProduct(delta) * ff_[e]).maxCoeff());
+        const double scale = rho.maxCoeff() * delta.cwiseAbs().maxCoeff();
+        const double lim = limit((el.radiosity + rho.cwiseProduct(delta) * ff_[e]).cwiseAbs().maxCoeff());
         if (scale <= lim || !splittable(el)) return;
         // Largest possible form factor from this element to the shooter (bounding spheres):
         // skip pairs that cannot reach the limit.
