@@ -1,9 +1,14 @@
 #pragma once
-/// Module `radiosity` (rad_radiosity): the coarse global solution. Owns: meshing each input
-/// polygon into patches and elements as an OpenMesh half-edge mesh (keeping the connectivity
-/// vertex tracing needs), point-to-polygon form factors, and progressive refinement radiosity
-/// (Cohen, Chen, Wallace, Greenberg 1988) in RGB (DESIGN.md §1 step 1).
+/// Module `radiosity` (rad_radiosity): the coarse global solution (DESIGN.md §1 step 1).
+/// Owns: meshing each input polygon into patches and elements (mesher.h), point-to-polygon form
+/// factors (form_factor.h), progressive refinement radiosity in RGB with adaptive element
+/// refinement (Cohen, Chen, Wallace, Greenberg 1988; solver.h), the solution's data model
+/// (solution.h), and the conforming OpenMesh half-edge mesh of its elements with mean-value
+/// interpolation for display (patch_mesh.h).
 ///
-/// May use: scene. Status: the target exists so the module graph is fixed; the code comes with
-/// the progressive-radiosity issue.
-#include "scene/scene.h"
+/// May use: scene, and TBB (the solver is parallel over receivers).
+#include "radiosity/form_factor.h"
+#include "radiosity/mesher.h"
+#include "radiosity/patch_mesh.h"
+#include "radiosity/solution.h"
+#include "radiosity/solver.h"
