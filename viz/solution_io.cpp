@@ -21,7 +21,23 @@
 #include "scene/error.h"
 #include "viz/atomic_file.h"
 
+// JSON for Eigen's RGB triples, and field lists for the settings and statistics: one list
+// serves both writing and reading.
+namespace nlohmann {
+template <>
+struct adl_serializer<rad::Rgb> {
+  static void to_json(json& j, const rad::Rgb& v) { j = {v.x(), v.y(), v.z()}; }
+  static void from_json(const json& j, rad::Rgb& v) { v = {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+};
+}  // namespace nlohmann
+
 namespace rad {
+
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolverSettings, patch_size, element_levels, refine_threshold, refine_passes,
+                                   min_element_size, unshot_fraction, max_shots, visibility_samples, seed)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolveStats, shots, patches, elements, refined, seconds, emitted, absorbed,
+                                   escaped, unshot, unshot_fraction, converged)
+
 namespace {
 
 using Json = nlohmann::json;
@@ -44,21 +60,6 @@ void add_string(vtkFieldData* field, const char* name, const std::string& value)
   field->AddArray(a);
 }
 void add_rgb(vtkDoubleArray* a, const Rgb& v) { a->InsertNextTuple3(v.x(), v.y(), v.z()); }
-
-Json settings_json(const SolverSettings& s) {
-  return {{"patch_size", s.patch_size},         {"element_levels", s.element_levels},
-          {"refine_threshold", s.refine_threshold}, {"refine_passes", s.refine_passes},
-          {"min_element_size", s.min_element_size},
-          {"unshot_fraction", s.unshot_fraction}, {"max_shots", s.max_shots},
-          {"visibility_samples", s.visibility_samples}, {"seed", s.seed}};
-}
-Json rgb_json(const Rgb& v) { return {v.x(), v.y(), v.z()}; }
-Json stats_json(const SolveStats& s) {
-  return {{"shots", s.shots},       {"patches", s.patches},           {"elements", s.elements},
-          {"refined", s.refined},   {"seconds", s.seconds},           {"emitted", rgb_json(s.emitted)},
-          {"absorbed", rgb_json(s.absorbed)}, {"escaped", rgb_json(s.escaped)}, {"unshot", rgb_json(s.unshot)},
-          {"unshot_fraction", s.unshot_fraction}, {"converged", s.converged}};
-}
 
 /// Corners of a list of polygons as (count array, flat xyz array).
 void add_corners(vtkFieldData* field, const char* count_name, const char* xyz_name,
@@ -129,8 +130,8 @@ void write_solution(const std::filesystem::path& file, const Solution& solution,
   vtkFieldData* field = poly->GetFieldData();
   add_string(field, "scene_path", solution.scene_path);
   add_string(field, "scene_fingerprint", solution.scene_fingerprint);
-  add_string(field, "settings", settings_json(solution.settings).dump());
-  add_string(field, "stats", stats_json(solution.stats).dump());
+  add_string(field, "settings", Json(solution.settings).dump());
+  add_string(field, "stats", Json(solution.stats).dump());
   auto ambient = doubles("ambient", 3);
   add_rgb(ambient, solution.ambient);
   field->AddArray(ambient);
@@ -228,7 +229,6 @@ Rgb rgb_at(vtkDataArray* a, vtkIdType i) {
   a->GetTuple(i, v);
   return {v[0], v[1], v[2]};
 }
-Rgb rgb_from(const Json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
 
 }  // namespace
 
@@ -248,28 +248,8 @@ Solution read_solution(const std::filesystem::path& file) {
   s.scene_path = in.string("scene_path");
   s.scene_fingerprint = in.string("scene_fingerprint");
   try {
-    const Json settings = in.json("settings");
-    s.settings.patch_size = settings.at("patch_size");
-    s.settings.element_levels = settings.at("element_levels");
-    s.settings.refine_threshold = settings.at("refine_threshold");
-    s.settings.refine_passes = settings.at("refine_passes");
-    s.settings.min_element_size = settings.at("min_element_size");
-    s.settings.unshot_fraction = settings.at("unshot_fraction");
-    s.settings.max_shots = settings.at("max_shots");
-    s.settings.visibility_samples = settings.at("visibility_samples");
-    s.settings.seed = settings.at("seed");
-    const Json stats = in.json("stats");
-    s.stats.shots = stats.at("shots");
-    s.stats.patches = stats.at("patches");
-    s.stats.elements = stats.at("elements");
-    s.stats.refined = stats.at("refined");
-    s.stats.seconds = stats.at("seconds");
-    s.stats.emitted = rgb_from(stats.at("emitted"));
-    s.stats.absorbed = rgb_from(stats.at("absorbed"));
-    s.stats.escaped = rgb_from(stats.at("escaped"));
-    s.stats.unshot = rgb_from(stats.at("unshot"));
-    s.stats.unshot_fraction = stats.at("unshot_fraction");
-    s.stats.converged = stats.at("converged");
+    s.settings = in.json("settings").get<SolverSettings>();
+    s.stats = in.json("stats").get<SolveStats>();
   } catch (const Json::exception& e) {
     in.fail(std::string("malformed settings or stats: ") + e.what());
   }
