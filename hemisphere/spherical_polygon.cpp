@@ -1,0 +1,176 @@
+#include "hemisphere/spherical_polygon.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace rad::hemi {
+namespace {
+
+constexpr double kOnPlane = 1e-15;  ///< |m . v| below this: v is on the plane (unit vectors)
+
+/// Twice the area-like measure of a convex spherical fan: sum of triple products. Zero for
+/// polygons that have collapsed onto a great circle.
+double fan_measure(const std::vector<Vec3>& v) {
+  double sum = 0;
+  for (size_t i = 1; i + 1 < v.size(); ++i) sum += v[0].dot(v[i].cross(v[i + 1]));
+  return sum;
+}
+
+bool coincident(const Vec3& a, const Vec3& b) { return (a - b).squaredNorm() <= 1e-30; }
+
+}  // namespace
+
+SphericalPolygon::SphericalPolygon(const std::vector<Vec3>& directions) {
+  std::vector<Vec3> unit;
+  unit.reserve(directions.size());
+  for (const Vec3& d : directions) {
+    const double len = d.norm();
+    if (!(len > 0)) continue;
+    const Vec3 u = d / len;
+    if (unit.empty() || !coincident(u, unit.back())) unit.push_back(u);
+  }
+  while (unit.size() > 1 && coincident(unit.front(), unit.back())) unit.pop_back();
+  if (unit.size() < 3) return;
+  const double measure = fan_measure(unit);
+  if (!(std::abs(measure) > 1e-28)) return;  // collapsed onto a great circle: no area
+  if (measure < 0) std::reverse(unit.begin(), unit.end());
+  // Edge planes from the input directions; the caller's polygon edges are not degenerate.
+  std::vector<Vec3> normals;
+  for (size_t i = 0; i < unit.size(); ++i) normals.push_back(unit[i].cross(unit[(i + 1) % unit.size()]).normalized());
+  for (const Vec3& n : normals) {
+    if (!n.allFinite()) return;
+  }
+  vertices_ = std::move(unit);
+  normals_ = std::move(normals);
+}
+
+SphericalPolygon::SphericalPolygon(std::vector<Vec3> vertices, std::vector<Vec3> normals) {
+  // Merge coincident consecutive vertices: the zero-length edge between them disappears, the
+  // merged vertex keeps the later vertex's outgoing edge.
+  std::vector<Vec3> v, n;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    if (!v.empty() && coincident(vertices[i], v.back())) {
+      n.back() = normals[i];
+      continue;
+    }
+    v.push_back(vertices[i]);
+    n.push_back(normals[i]);
+  }
+  while (v.size() > 1 && coincident(v.front(), v.back())) {
+    v.pop_back();
+    n.pop_back();
+  }
+  if (v.size() < 3 || !(fan_measure(v) > 1e-28)) return;
+  vertices_ = std::move(v);
+  normals_ = std::move(n);
+}
+
+std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3& m) const {
+  const size_t count = vertices_.size();
+  std::vector<double> s(count);
+  bool any_pos = false, any_neg = false;
+  for (size_t i = 0; i < count; ++i) {
+    s[i] = m.dot(vertices_[i]);
+    if (std::abs(s[i]) <= kOnPlane) s[i] = 0;
+    any_pos |= s[i] > 0;
+    any_neg |= s[i] < 0;
+  }
+  if (!any_neg) return {*this, SphericalPolygon()};
+  if (!any_pos) return {SphericalPolygon(), *this};
+
+  // Sutherland-Hodgman for both sides at once. Each output vertex carries the normal of its
+  // outgoing edge: an original edge keeps its normal, the cut gets +m (positive part) or -m.
+  std::vector<Vec3> pos_v, pos_n, neg_v, neg_n;
+  for (size_t i = 0; i < count; ++i) {
+    const size_t j = (i + 1) % count;
+    const Vec3& vi = vertices_[i];
+    const Vec3& ni = normals_[i];
+    const double si = s[i], sj = s[j];
+    // Positive side.
+    if (si > 0 || (si == 0 && sj >= 0)) {
+      pos_v.push_back(vi);
+      pos_n.push_back(ni);
+    } else if (si == 0 && sj < 0) {
+      pos_v.push_back(vi);  // on the plane, the edge leaves: the cut follows
+      pos_n.push_back(m);
+    }
+    // Negative side.
+    if (si < 0 || (si == 0 && sj <= 0)) {
+      neg_v.push_back(vi);
+      neg_n.push_back(ni);
+    } else if (si == 0 && sj > 0) {
+      neg_v.push_back(vi);
+      neg_n.push_back(-m);
+    }
+    if ((si > 0 && sj < 0) || (si < 0 && sj > 0)) {
+      // The chord point where m . d = 0, normalized: on the edge's great circle and on m's.
+      const Vec3 crossing = ((si * vertices_[j] - sj * vi) / (si - sj)).normalized();
+      if (si > 0) {  // leaving the positive side: positive gets the cut, negative the edge
+        pos_v.push_back(crossing);
+        pos_n.push_back(m);
+        neg_v.push_back(crossing);
+        neg_n.push_back(ni);
+      } else {
+        neg_v.push_back(crossing);
+        neg_n.push_back(-m);
+        pos_v.push_back(crossing);
+        pos_n.push_back(ni);
+      }
+    }
+  }
+  return {SphericalPolygon(std::move(pos_v), std::move(pos_n)), SphericalPolygon(std::move(neg_v), std::move(neg_n))};
+}
+
+Vec3 SphericalPolygon::interior_direction() const {
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& v : vertices_) sum += v;
+  return sum.normalized();
+}
+
+double lambert_loop(const std::vector<Vec3>& loop, const Vec3& n) {
+  double sum = 0;
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const Vec3& a = loop[i];
+    const Vec3& b = loop[(i + 1) % loop.size()];
+    const Vec3 c = a.cross(b);
+    const double c_norm = c.norm();
+    if (!(c_norm > 0)) continue;
+    // atan2(|a x b|, a . b): accurate for tiny and for nearly opposite arcs alike.
+    sum += std::atan2(c_norm, a.dot(b)) * n.dot(c) / c_norm;
+  }
+  return sum / (2 * std::numbers::pi);
+}
+
+double SphericalPolygon::form_factor(const Vec3& n) const {
+  if (empty()) return 0.0;
+  // Lambert with the stored edge normals: exact planes even for very short edges.
+  double sum = 0;
+  for (size_t i = 0; i < vertices_.size(); ++i) {
+    const Vec3& a = vertices_[i];
+    const Vec3& b = vertices_[(i + 1) % vertices_.size()];
+    sum += std::atan2(a.cross(b).norm(), a.dot(b)) * n.dot(normals_[i]);
+  }
+  return std::abs(sum) / (2 * std::numbers::pi);
+}
+
+double form_factor_with_holes(const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes,
+                              const Vec3& n) {
+  double sum = lambert_loop(outer, n);
+  for (const auto& hole : holes) sum += lambert_loop(hole, n);
+  return std::abs(sum);
+}
+
+std::vector<Vec3> clip_to_upper_halfspace(const std::vector<Vec3>& polygon, const Vec3& n) {
+  std::vector<Vec3> out;
+  const size_t count = polygon.size();
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3& a = polygon[i];
+    const Vec3& b = polygon[(i + 1) % count];
+    const double da = n.dot(a), db = n.dot(b);
+    if (da >= 0) out.push_back(a);
+    if ((da > 0 && db < 0) || (da < 0 && db > 0)) out.push_back(a + (da / (da - db)) * (b - a));
+  }
+  return out;
+}
+
+}  // namespace rad::hemi

@@ -1,0 +1,71 @@
+#pragma once
+/// Convex spherical polygons around a point x (x at the origin): the projection of a planar
+/// convex polygon onto the unit sphere (paper 004 §3; DESIGN.md §4). Every edge is the arc cut
+/// by a plane through x; side tests are one dot product with that plane's normal.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <utility>
+#include <vector>
+
+namespace rad::hemi {
+
+using Vec3 = Eigen::Vector3d;
+
+/// A convex spherical polygon: unit vertices in order, every edge a minor arc, the whole inside
+/// an open hemisphere. Each edge also stores the unit normal of its plane through x, pointing
+/// into the polygon. Normals are never recomputed from vertices after construction: a split
+/// keeps the parent's normals for the surviving parts of its edges and adds the cutting plane's,
+/// so edge planes stay exact even when a split puts two vertices within rounding of each other
+/// (a plane through two nearly equal directions would be numerically arbitrary). Empty when it
+/// has fewer than 3 vertices or (numerically) no area.
+class SphericalPolygon {
+ public:
+  SphericalPolygon() = default;
+  /// From direction vectors (any length > 0, relative to x), reordered to the canonical
+  /// orientation; near-duplicate consecutive directions are merged.
+  explicit SphericalPolygon(const std::vector<Vec3>& directions);
+
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  bool empty() const { return vertices_.size() < 3; }
+
+  /// The parts on the positive (m . d >= 0) and negative side of the plane through x with unit
+  /// normal m (Sutherland-Hodgman on the sphere; crossings are normalized chord points, which
+  /// lie exactly on both planes up to rounding). Vertices within 1e-15 of the plane count as on
+  /// it, so no sliver vertices are made. Either part may be empty.
+  std::pair<SphericalPolygon, SphericalPolygon> split(const Vec3& m) const;
+
+  /// The unit normal of edge i's plane (the edge from vertex i to i+1), pointing inside.
+  const Vec3& edge_normal(size_t i) const { return normals_[i]; }
+  /// A direction strictly inside (the normalized vertex mean).
+  Vec3 interior_direction() const;
+
+  /// Lambert's contour formula: the form factor of this spherical polygon for a receiver with
+  /// unit normal n at x, (1 / 2 pi) |sum_i angle(v_i, v_i+1) n . normal_i|. Assumes the
+  /// polygon lies in the receiver's upper hemisphere (n . v >= 0 for all vertices).
+  double form_factor(const Vec3& n) const;
+
+ private:
+  /// Takes vertices with their outgoing edges' normals as built by split(); merges
+  /// coincident vertices (keeping the later outgoing normal) and empties degenerate results.
+  SphericalPolygon(std::vector<Vec3> vertices, std::vector<Vec3> normals);
+
+  std::vector<Vec3> vertices_;
+  std::vector<Vec3> normals_;  ///< normals_[i]: plane of the edge vertices_[i] -> vertices_[i+1]
+};
+
+/// Signed contribution of one closed loop to Lambert's formula (without the absolute value):
+/// (1 / 2 pi) sum_i angle(v_i, v_i+1) n . unit(v_i x v_i+1). Loops of opposite orientation have
+/// opposite signs, so a polygon with holes is its outer loop plus its holes listed the other way
+/// round: FF = |sum over loops|. Vertices are directions from x in n's upper hemisphere.
+double lambert_loop(const std::vector<Vec3>& loop, const Vec3& n);
+
+/// Form factor of a spherical polygon with holes: |lambert_loop(outer) + sum lambert_loop(hole)|
+/// where every hole runs opposite to the outer loop.
+double form_factor_with_holes(const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes,
+                              const Vec3& n);
+
+/// Clips a planar polygon (vertices relative to x) to x's upper half-space n . p >= 0, exactly
+/// in 3D before any projection. Returns the clipped polygon (maybe with < 3 vertices).
+std::vector<Vec3> clip_to_upper_halfspace(const std::vector<Vec3>& polygon, const Vec3& n);
+
+}  // namespace rad::hemi

@@ -1,0 +1,56 @@
+#pragma once
+/// Exact irradiance at a point by hemisphere projection (paper 004 §3; DESIGN.md §4).
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace rad {
+
+/// One visible piece of a polygon, as seen from the gather point.
+struct VisibleFragment {
+  int polygon = -1;           ///< Index into Scene::polygons.
+  double form_factor = 0;     ///< Its form factor for the receiver.
+  bool front_facing = false;  ///< True when the receiver sees the polygon's front (it may emit).
+  std::vector<Vec3> directions;  ///< Unit vertex directions from the point (convex, in order).
+};
+
+/// What a gather found.
+struct GatherResult {
+  Rgb irradiance = Rgb::Zero();  ///< H(x) [W/m^2]: sum of visible form factors x exitance.
+  double covered = 0;            ///< Sum of all visible form factors (<= 1; 1 when enclosed).
+  std::vector<VisibleFragment> fragments;  ///< Filled when asked for.
+};
+
+/// Exact irradiance from a scene's polygons at points with normals. Every polygon occludes from
+/// both sides; a polygon radiates its exitance from its front side only. Nothing is sampled:
+/// the visible part of every polygon is computed exactly (hemisphere/visible_surface.h) and its
+/// form factor by Lambert's contour formula.
+///
+/// Degenerate input is defined, not special-cased: a polygon whose plane contains x (x on it,
+/// on its edge or vertex, or seen edge-on) subtends no solid angle and is skipped; parts below
+/// x's tangent plane are clipped away in 3D before projection.
+class HemisphereGatherer {
+ public:
+  /// Exitance per polygon: the materials' emission (direct lighting only).
+  explicit HemisphereGatherer(const Scene& scene);
+  /// Exitance per polygon given (e.g. radiosities of a solution); #exitance == #polygons.
+  HemisphereGatherer(const Scene& scene, std::vector<Rgb> exitance);
+
+  /// Irradiance at x (on or off a surface) for the unit receiver normal n. Thread-safe.
+  /// Cost: O(P log P) to order the P polygons, then one BSP insertion per visible triangle.
+  GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments = false) const;
+
+ private:
+  struct Triangle {
+    int polygon;
+    Vec3 a, b, c;
+    Vec3 centre;
+    double radius;
+  };
+  const Scene& scene_;
+  std::vector<Rgb> exitance_;
+  std::vector<Triangle> triangles_;
+  double in_plane_ = 0;  ///< |plane offset| below this: x is in the polygon's plane
+};
+
+}  // namespace rad

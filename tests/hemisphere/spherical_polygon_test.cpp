@@ -1,0 +1,122 @@
+#include "hemisphere/spherical_polygon.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "hemisphere/visible_surface.h"
+
+namespace rad::hemi {
+namespace {
+
+// Howell B-3 through a corner (shared/ground-truth/formfactors.md).
+double howell_b3(double a, double b, double c) {
+  const double X = a / c, Y = b / c;
+  return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
+          Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
+         (2 * std::numbers::pi);
+}
+
+TEST(SphericalPolygon, LambertMatchesHowellForAProjectedRectangle) {
+  const SphericalPolygon rect({{0, 0, 1}, {2, 0, 1}, {2, 3, 1}, {0, 3, 1}});
+  EXPECT_NEAR(rect.form_factor(Vec3::UnitZ()), 0.217575206107758, 1e-13);
+  // Orientation is canonical: the same polygon listed the other way round is identical.
+  const SphericalPolygon reversed({{0, 3, 1}, {2, 3, 1}, {2, 0, 1}, {0, 0, 1}});
+  EXPECT_EQ(rect.vertices().size(), reversed.vertices().size());
+  EXPECT_NEAR(reversed.form_factor(Vec3::UnitZ()), 0.217575206107758, 1e-13);
+  for (size_t i = 0; i < rect.vertices().size(); ++i) {
+    EXPECT_GT(rect.edge_normal(i).dot(rect.interior_direction()), 0) << "edge normals point inside";
+  }
+}
+
+TEST(SphericalPolygon, SplitPartsAddUpAndLieOnTheirSides) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g;
+  const SphericalPolygon rect({{-1, -1, 1}, {1.5, -1, 1}, {1.5, 2, 1}, {-1, 2, 1}});
+  const double whole = rect.form_factor(Vec3::UnitZ());
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 m = Vec3(g(rng), g(rng), 0.3 * g(rng)).normalized();
+    const auto [pos, neg] = rect.split(m);
+    ASSERT_NEAR(pos.form_factor(Vec3::UnitZ()) + neg.form_factor(Vec3::UnitZ()), whole, 1e-14) << m.transpose();
+    for (const Vec3& v : pos.vertices()) ASSERT_GE(m.dot(v), -1e-15);
+    for (const Vec3& v : neg.vertices()) ASSERT_LE(m.dot(v), 1e-15);
+  }
+  // A plane through the diagonal's two vertices: both halves keep those vertices exactly.
+  const auto [left, right] = rect.split(Vec3(-1, -1, 1).cross(Vec3(1.5, 2, 1)).normalized());
+  EXPECT_EQ(left.vertices().size(), 3u);
+  EXPECT_EQ(right.vertices().size(), 3u);
+}
+
+TEST(SphericalPolygon, HolesSubtractWithTheirOrientation) {
+  // A 4 x 4 square with a 1 x 1 hole, at height 1: FF = FF(outer) - FF(hole), and the hole
+  // listed the other way round does exactly that.
+  const std::vector<Vec3> outer{{-2, -2, 1}, {2, -2, 1}, {2, 2, 1}, {-2, 2, 1}};
+  const std::vector<Vec3> hole{{0.5, 0.5, 1}, {0.5, 1.5, 1}, {1.5, 1.5, 1}, {1.5, 0.5, 1}};  // clockwise
+  const double expected = 4 * howell_b3(2, 2, 1) - (howell_b3(1.5, 1.5, 1) - 2 * howell_b3(1.5, 0.5, 1) + howell_b3(0.5, 0.5, 1));
+  EXPECT_NEAR(form_factor_with_holes(outer, {hole}, Vec3::UnitZ()), expected, 1e-13);
+}
+
+TEST(SphericalPolygon, DegenerateInputIsEmpty) {
+  EXPECT_TRUE(SphericalPolygon({{0, 0, 1}, {1, 0, 1}}).empty());
+  EXPECT_TRUE(SphericalPolygon({{0, 0, 1}, {1, 0, 1}, {2, 0, 1}}).empty()) << "collinear: on one great circle";
+  EXPECT_TRUE(SphericalPolygon({{1, 0, 0}, {2, 0, 0}, {1, 1, 0}}).empty()) << "edge-on from x: a plane through x";
+  // Coincident vertices are merged, not fatal.
+  const SphericalPolygon dup({{0, 0, 1}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {1, 1, 1}});
+  EXPECT_EQ(dup.vertices().size(), 3u);
+}
+
+TEST(SphericalPolygon, ClipsAtTheTangentPlaneExactlyIn3D) {
+  const auto clipped = clip_to_upper_halfspace({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}}, Vec3::UnitZ());
+  ASSERT_EQ(clipped.size(), 4u);
+  EXPECT_EQ(clipped[0], Vec3(1, 1, 0));  // the first crossing, then the kept upper vertices
+  EXPECT_EQ(clipped[3], Vec3(0, 1, 0));
+}
+
+TEST(VisibleSurface, NearerPolygonHidesFartherWhateverTheOrder) {
+  // Source 2 x 2 at height 2, a 1 x 1 blocker at height 1: from the origin the blocker hides
+  // the centre of the source.
+  const SphericalPolygon source({{-1, -1, 2}, {1, -1, 2}, {1, 1, 2}, {-1, 1, 2}});
+  const SphericalPolygon blocker({{-0.5, -0.5, 1}, {0.5, -0.5, 1}, {0.5, 0.5, 1}, {-0.5, 0.5, 1}});
+  const Occluder s{0, Vec3::UnitZ(), 2}, b{1, Vec3::UnitZ(), 1};
+  for (int order = 0; order < 2; ++order) {
+    VisibleSurface v;
+    if (order == 0) {
+      v.insert(s, source);
+      v.insert(b, blocker);
+    } else {
+      v.insert(b, blocker);
+      v.insert(s, source);
+    }
+    double ff_source = 0;
+    for (const auto& f : v.fragments()) ff_source += f.id == 0 ? f.region.form_factor(Vec3::UnitZ()) : 0;
+    // The blocker's shadow on the source plane is [-1, 1]^2: it hides all of the source.
+    EXPECT_NEAR(ff_source, 0.0, 1e-15) << "order " << order;
+    EXPECT_NEAR(v.covered_form_factor(Vec3::UnitZ()), 4 * howell_b3(1, 1, 2), 1e-14);
+  }
+}
+
+TEST(VisibleSurface, InterpenetratingPolygonsAreSplitByEachOthersPlane) {
+  // Two rectangles crossing along the line x = 0 at height 1: A tilts up with x, B down.
+  // Seen from below, A is nearer for x < 0 and B for x > 0.
+  const std::vector<Vec3> a{{-1, -1, 0.5}, {1, -1, 1.5}, {1, 1, 1.5}, {-1, 1, 0.5}};
+  const std::vector<Vec3> b{{-1, -1, 1.5}, {1, -1, 0.5}, {1, 1, 0.5}, {-1, 1, 1.5}};
+  auto occluder = [](int id, const std::vector<Vec3>& p) {
+    const Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+    return Occluder{id, n, n.dot(p[0])};
+  };
+  VisibleSurface v;
+  v.insert(occluder(0, a), SphericalPolygon(a));
+  v.insert(occluder(1, b), SphericalPolygon(b));
+  double ff[2] = {0, 0};
+  for (const auto& f : v.fragments()) {
+    ff[f.id] += f.region.form_factor(Vec3::UnitZ());
+    // Every fragment lies on one side of x = 0: A's on the negative, B's on the positive.
+    for (const Vec3& d : f.region.vertices()) EXPECT_LE((f.id == 0 ? 1 : -1) * d.x(), 1e-12);
+  }
+  EXPECT_NEAR(ff[0], ff[1], 1e-14) << "mirror symmetry";
+}
+
+}  // namespace
+}  // namespace rad::hemi
