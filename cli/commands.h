@@ -12,5 +12,6 @@ using Run = std::function<void()>;
 void add_info_command(CLI::App& app, Run& run);
 void add_render_command(CLI::App& app, Run& run);
 void add_solve_command(CLI::App& app, Run& run);
+void add_probe_command(CLI::App& app, Run& run);
 
 }  // namespace rad::cli

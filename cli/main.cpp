@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   rad::cli::Run run;
   rad::cli::add_info_command(app, run);
   rad::cli::add_solve_command(app, run);
+  rad::cli::add_probe_command(app, run);
   rad::cli::add_render_command(app, run);
 
   try {

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include <Eigen/Core>
+
 #include "tests/bad_scene_cases.h"
 #include "viz/image_io.h"
 
@@ -61,7 +63,7 @@ Result run(const std::string& args) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* args : {"--help", "info --help", "solve --help", "render --help"}) {
+  for (const char* args : {"--help", "info --help", "solve --help", "probe --help", "render --help"}) {
     const Result r = run(args);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_NE(r.out.find("Usage:"), std::string::npos) << args << "\n" << r.out;
@@ -172,6 +174,59 @@ TEST(Cli, RenderPatchesRefusesAMissingOrMismatchedSolution) {
   // Bad solver settings are usage errors.
   r = run("solve " + floor + " --patch-size 0 -o '" + (dir / "y.vtp").string() + "'");
   EXPECT_EQ(r.exit_code, 2) << r.err;
+}
+
+std::vector<std::vector<double>> parse_csv(const std::string& text, std::string* header) {
+  std::istringstream in(text);
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<double> row;
+    std::istringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) row.push_back(std::stod(f));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(Cli, ProbeWritesTheDocumentedCsvIndependentOfThreads) {
+  const fs::path dir = scratch();
+  const std::string args = "probe " + quoted(kRoot / "data/cornell-box/scene.json") + " --points " +
+                           quoted(kData / "points/cornell.csv");
+  const Result one = run(args + " -j 1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const Result two = run(args + " -j 2 -o " + quoted(dir / "out.csv"));
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(one.out, slurp(dir / "out.csv")) << "byte-identical for any thread count";
+  std::string header;
+  const auto rows = parse_csv(one.out, &header);
+  EXPECT_EQ(header, "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
+  ASSERT_EQ(rows.size(), 5u) << "comments, blank lines and the header are not points";
+  for (const auto& r : rows) {
+    ASSERT_EQ(r.size(), 10u);
+    EXPECT_NEAR(Eigen::Vector3d(r[3], r[4], r[5]).norm(), 1.0, 1e-15) << "normals are normalized";
+    for (int c = 6; c < 9; ++c) EXPECT_GE(r[c], 0);
+    EXPECT_EQ(r[9], 0.0) << "exact results have a zero bound";
+  }
+  EXPECT_GT(rows[0][6], 0.1) << "the floor centre is lit";
+  EXPECT_EQ(rows[3][4], 1.0) << "(0, 2, 0) normalized";
+}
+
+TEST(Cli, ProbeRejectsMalformedPointsNamingTheLine) {
+  const std::string scene = quoted(kRoot / "data/cornell-box/scene.json");
+  const std::pair<const char*, const char*> cases[] = {
+      {"five_fields.csv", "five_fields.csv:2: expected 6 fields"},
+      {"not_a_number.csv", "not_a_number.csv:2: field 3 'abc' is not a number"},
+      {"zero_normal.csv", "zero_normal.csv:1: the normal (nx, ny, nz) is zero"},
+      {"empty.csv", "empty.csv: no points"},
+      {"missing.csv", "missing.csv: cannot open points file"},
+  };
+  for (const auto& [file, message] : cases) {
+    const Result r = run("probe " + scene + " --points " + quoted(kData / "points" / file));
+    EXPECT_EQ(r.exit_code, 1) << file;
+    EXPECT_NE(r.err.find(message), std::string::npos) << file << ": " << r.err;
+    EXPECT_EQ(r.out, "") << file;
+  }
 }
 
 }  // namespace
