@@ -65,6 +65,16 @@ SphericalPolygon::SphericalPolygon(std::vector<Vec3> vertices, std::vector<Vec3>
   normals_ = std::move(n);
 }
 
+int SphericalPolygon::side_of(const Vec3& m) const {
+  bool any_pos = false, any_neg = false;
+  for (const Vec3& v : vertices_) {
+    const double s = m.dot(v);
+    any_pos |= s > kOnPlane;
+    any_neg |= s < -kOnPlane;
+  }
+  return any_neg ? (any_pos ? 0 : -1) : 1;
+}
+
 std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3& m) const {
   const size_t count = vertices_.size();
   std::vector<double> s(count);

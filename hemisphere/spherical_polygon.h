@@ -34,6 +34,11 @@ class SphericalPolygon {
   /// it, so no sliver vertices are made. Either part may be empty.
   std::pair<SphericalPolygon, SphericalPolygon> split(const Vec3& m) const;
 
+  /// +1 when the polygon lies on the positive side of the plane through x with unit normal m
+  /// (touching allowed), -1 on the negative side, 0 when the plane cuts it. Same tolerance as
+  /// split(); allocates nothing.
+  int side_of(const Vec3& m) const;
+
   /// The unit normal of edge i's plane (the edge from vertex i to i+1), pointing inside.
   const Vec3& edge_normal(size_t i) const { return normals_[i]; }
   /// A direction strictly inside (the normalized vertex mean).

@@ -14,6 +14,12 @@ void VisibleSurface::insert(const Occluder& occluder, const SphericalPolygon& re
 
 void VisibleSurface::insert_at(int node, int occupant, const SphericalPolygon& piece) {
   if (piece.empty()) return;
+  // Walk down while the piece lies on one side of each plane; copy only where a plane cuts it.
+  while (!nodes_[node].leaf()) {
+    const int side = piece.side_of(nodes_[node].plane);
+    if (side == 0) break;
+    node = side > 0 ? nodes_[node].positive : nodes_[node].negative;
+  }
   if (!nodes_[node].leaf()) {
     const auto [pos, neg] = piece.split(nodes_[node].plane);
     // Children are read after the split: recursion may grow nodes_ (no references kept).

@@ -18,15 +18,30 @@ HemisphereGatherer::HemisphereGatherer(const Scene& scene, std::vector<Rgb> exit
     throw Error("hemisphere gather: " + std::to_string(exitance_.size()) + " exitances for " +
                 std::to_string(scene.polygons.size()) + " polygons");
   }
-  // Concave polygons become triangles in their own plane: every projected piece is convex.
+  // Every projected piece must be convex: convex polygons stay whole (fewer fragments and BSP
+  // planes), concave ones become triangles in their own plane.
+  auto add_piece = [&](int polygon, std::vector<Vec3> vertices) {
+    Vec3 centre = Vec3::Zero();
+    for (const Vec3& v : vertices) centre += v;
+    centre /= static_cast<double>(vertices.size());
+    double radius = 0;
+    for (const Vec3& v : vertices) radius = std::max(radius, (v - centre).norm());
+    pieces_.push_back({polygon, std::move(vertices), centre, radius});
+  };
   for (size_t i = 0; i < scene.polygons.size(); ++i) {
     const Polygon& p = scene.polygons[i];
-    for (const auto& t : triangulate(project_to_plane(p.vertices, p.normal))) {
-      Triangle tri{static_cast<int>(i), p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]], Vec3::Zero(), 0};
-      tri.centre = (tri.a + tri.b + tri.c) / 3;
-      tri.radius = std::max({(tri.a - tri.centre).norm(), (tri.b - tri.centre).norm(), (tri.c - tri.centre).norm()});
-      triangles_.push_back(tri);
+    const std::vector<Vec2> flat = project_to_plane(p.vertices, p.normal);
+    const double orientation = signed_area_2d(flat) > 0 ? 1 : -1;
+    bool convex = true;
+    for (size_t k = 0; k < flat.size() && convex; ++k) {
+      const Vec2 e0 = flat[(k + 1) % flat.size()] - flat[k], e1 = flat[(k + 2) % flat.size()] - flat[(k + 1) % flat.size()];
+      convex = orientation * (e0.x() * e1.y() - e0.y() * e1.x()) >= 0;
     }
+    if (convex) {
+      add_piece(static_cast<int>(i), p.vertices);
+      continue;
+    }
+    for (const auto& t : triangulate(flat)) add_piece(static_cast<int>(i), {p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]]});
   }
   in_plane_ = 1e-12 * scene.bounds().diagonal();
 }
@@ -35,24 +50,26 @@ GatherResult HemisphereGatherer::gather(const Vec3& x, const Vec3& n, bool keep_
   // Front to back by a lower bound on distance (ties by index): far triangles then stop at
   // their first depth test. The order never changes the result, only the work.
   std::vector<std::pair<double, int>> order;
-  order.reserve(triangles_.size());
-  for (size_t t = 0; t < triangles_.size(); ++t) {
-    const Triangle& tri = triangles_[t];
-    order.emplace_back(std::max(0.0, (tri.centre - x).norm() - tri.radius), static_cast<int>(t));
+  order.reserve(pieces_.size());
+  for (size_t k = 0; k < pieces_.size(); ++k) {
+    order.emplace_back(std::max(0.0, (pieces_[k].centre - x).norm() - pieces_[k].radius), static_cast<int>(k));
   }
   std::sort(order.begin(), order.end());
 
   hemi::VisibleSurface visible;
-  for (const auto& [distance, t] : order) {
-    const Triangle& tri = triangles_[t];
-    const Polygon& polygon = scene_.polygons[tri.polygon];
-    const double offset = polygon.normal.dot(tri.a - x);
+  std::vector<Vec3> relative;
+  for (const auto& [distance, k] : order) {
+    const Piece& piece = pieces_[k];
+    const Polygon& polygon = scene_.polygons[piece.polygon];
+    const double offset = polygon.normal.dot(piece.vertices.front() - x);
     if (std::abs(offset) <= in_plane_) continue;  // x in its plane: no solid angle
-    const auto clipped = hemi::clip_to_upper_halfspace({tri.a - x, tri.b - x, tri.c - x}, n);
+    relative.clear();
+    for (const Vec3& v : piece.vertices) relative.push_back(v - x);
+    const auto clipped = hemi::clip_to_upper_halfspace(relative, n);
     if (clipped.size() < 3) continue;
     const hemi::SphericalPolygon region(clipped);
     if (region.empty()) continue;
-    visible.insert(hemi::Occluder{tri.polygon, polygon.normal, offset}, region);
+    visible.insert(hemi::Occluder{piece.polygon, polygon.normal, offset}, region);
   }
 
   GatherResult result;

@@ -37,19 +37,21 @@ class HemisphereGatherer {
   HemisphereGatherer(const Scene& scene, std::vector<Rgb> exitance);
 
   /// Irradiance at x (on or off a surface) for the unit receiver normal n. Thread-safe.
-  /// Cost: O(P log P) to order the P polygons, then one BSP insertion per visible triangle.
+  /// Cost: O(P log P) to order the P convex pieces, then one BSP insertion per piece above the
+  /// horizon (measured in bench/results/hemisphere.md).
   GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments = false) const;
 
  private:
-  struct Triangle {
+  /// A convex piece of a polygon: the polygon itself when convex, else a triangle of it.
+  struct Piece {
     int polygon;
-    Vec3 a, b, c;
+    std::vector<Vec3> vertices;
     Vec3 centre;
     double radius;
   };
   const Scene& scene_;
   std::vector<Rgb> exitance_;
-  std::vector<Triangle> triangles_;
+  std::vector<Piece> pieces_;
   double in_plane_ = 0;  ///< |plane offset| below this: x is in the polygon's plane
 };
 
