@@ -137,6 +137,24 @@ Vec3 SphericalPolygon::interior_direction() const {
   return sum.normalized();
 }
 
+std::vector<SphericalPolygon> intersect(const SphericalPolygon& a, const SphericalPolygon& b) {
+  SphericalPolygon inside = a;
+  for (size_t i = 0; i < b.vertices().size() && !inside.empty(); ++i) inside = inside.split(b.edge_normal(i)).first;
+  if (inside.empty()) return {};
+  return {inside};
+}
+
+std::vector<SphericalPolygon> subtract(const SphericalPolygon& a, const SphericalPolygon& b) {
+  std::vector<SphericalPolygon> out;
+  SphericalPolygon rest = a;
+  for (size_t i = 0; i < b.vertices().size() && !rest.empty(); ++i) {
+    auto [in, outside] = rest.split(b.edge_normal(i));
+    if (!outside.empty()) out.push_back(std::move(outside));
+    rest = std::move(in);
+  }
+  return out;
+}
+
 double lambert_loop(const std::vector<Vec3>& loop, const Vec3& n) {
   double sum = 0;
   for (size_t i = 0; i < loop.size(); ++i) {

@@ -58,6 +58,17 @@ class SphericalPolygon {
   std::vector<Vec3> normals_;  ///< normals_[i]: plane of the edge vertices_[i] -> vertices_[i+1]
 };
 
+/// Boolean operations on convex spherical polygons, with the same exact splits the visible-
+/// surface structure uses. Results are sets of convex pieces, which also represent concave
+/// results and results with holes (their form factors add). A concave polygon enters as its
+/// convex pieces (e.g. the triangles of its planar triangulation), operation by operation.
+/// a intersect b: zero or one piece.
+std::vector<SphericalPolygon> intersect(const SphericalPolygon& a, const SphericalPolygon& b);
+/// a minus b: up to one piece per edge of b (each the part of a outside that edge and inside
+/// the edges before it). Shared edges and vertices produce no slivers: points within 1e-15 of a
+/// plane count as on it.
+std::vector<SphericalPolygon> subtract(const SphericalPolygon& a, const SphericalPolygon& b);
+
 /// Signed contribution of one closed loop to Lambert's formula (without the absolute value):
 /// (1 / 2 pi) sum_i angle(v_i, v_i+1) n . unit(v_i x v_i+1). Loops of opposite orientation have
 /// opposite signs, so a polygon with holes is its outer loop plus its holes listed the other way

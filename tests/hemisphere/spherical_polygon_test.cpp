@@ -74,6 +74,51 @@ TEST(SphericalPolygon, ClipsAtTheTangentPlaneExactlyIn3D) {
   EXPECT_EQ(clipped[3], Vec3(0, 1, 0));
 }
 
+double total_ff(const std::vector<SphericalPolygon>& pieces, const Vec3& n) {
+  double sum = 0;
+  for (const auto& p : pieces) sum += p.form_factor(n);
+  return sum;
+}
+
+TEST(SphericalBoolean, IntersectionAndDifferencePartitionThePolygon) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto random_convex = [&](int k) {
+    // A random convex polygon on the plane z = 1: points on a circle, sorted by angle.
+    const Vec3 c(0.5 * u(rng), 0.5 * u(rng), 1);
+    std::vector<double> angles;
+    for (int i = 0; i < k; ++i) angles.push_back(3.14159 * u(rng));
+    std::sort(angles.begin(), angles.end());
+    std::vector<Vec3> pts;
+    const double r = 0.3 + 0.5 * std::abs(u(rng));
+    for (double a : angles) pts.push_back(c + r * Vec3(std::cos(a), std::sin(a), 0));
+    return SphericalPolygon(pts);
+  };
+  const Vec3 n = Vec3::UnitZ();
+  for (int trial = 0; trial < 500; ++trial) {
+    const SphericalPolygon a = random_convex(3 + trial % 6), b = random_convex(3 + trial % 5);
+    if (a.empty() || b.empty()) continue;
+    const double fa = a.form_factor(n), fb = b.form_factor(n);
+    const double both = total_ff(intersect(a, b), n);
+    ASSERT_NEAR(both + total_ff(subtract(a, b), n), fa, 1e-14) << "trial " << trial;
+    ASSERT_NEAR(both + total_ff(subtract(b, a), n), fb, 1e-14) << "trial " << trial;
+    ASSERT_NEAR(total_ff(intersect(b, a), n), both, 1e-14) << "trial " << trial;
+  }
+}
+
+TEST(SphericalBoolean, SharedEdgesAndIdenticalPolygons) {
+  const Vec3 n = Vec3::UnitZ();
+  const SphericalPolygon left({{-1, 0, 1}, {0, 0, 1}, {0, 1, 1}, {-1, 1, 1}});
+  const SphericalPolygon right({{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}});
+  EXPECT_TRUE(intersect(left, right).empty()) << "touching along an edge: no overlap";
+  EXPECT_NEAR(total_ff(subtract(left, right), n), left.form_factor(n), 1e-15);
+  EXPECT_TRUE(subtract(left, left).empty()) << "nothing is left, not even slivers";
+  EXPECT_NEAR(total_ff(intersect(left, left), n), left.form_factor(n), 1e-15);
+  // Touching at one vertex only.
+  const SphericalPolygon corner({{0, 1, 1}, {1, 1, 1}, {1, 2, 1}, {0, 2, 1}});
+  EXPECT_TRUE(intersect(left, corner).empty());
+}
+
 TEST(VisibleSurface, NearerPolygonHidesFartherWhateverTheOrder) {
   // Source 2 x 2 at height 2, a 1 x 1 blocker at height 1: from the origin the blocker hides
   // the centre of the source.
