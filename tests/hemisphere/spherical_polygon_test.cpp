@@ -7,17 +7,12 @@
 #include <random>
 
 #include "hemisphere/visible_surface.h"
+#include "tests/closed_forms.h"
 
 namespace rad::hemi {
 namespace {
 
-// Howell B-3 through a corner (shared/ground-truth/formfactors.md).
-double howell_b3(double a, double b, double c) {
-  const double X = a / c, Y = b / c;
-  return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
-          Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
-         (2 * std::numbers::pi);
-}
+using test::howell_b3;
 
 TEST(SphericalPolygon, LambertMatchesHowellForAProjectedRectangle) {
   const SphericalPolygon rect({{0, 0, 1}, {2, 0, 1}, {2, 3, 1}, {0, 3, 1}});

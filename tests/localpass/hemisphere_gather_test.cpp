@@ -12,6 +12,7 @@
 #include "radiosity/form_factor.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
+#include "tests/closed_forms.h"
 #include "tests/scene_builder.h"
 
 namespace rad {
@@ -20,19 +21,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 using test::SceneBuilder;
 
-double b3(double a, double b, double c) {  // Howell B-3, corner of an a x b rectangle at height c
-  const double X = a / c, Y = b / c;
-  return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
-          Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
-         (2 * kPi);
-}
-/// Rectangle [x0, x1] x [y0, y1] at height c above the origin, by signed superposition.
-double rect_ff(double x0, double x1, double y0, double y1, double c) {
-  auto corner = [&](double x, double y) {
-    return (x < 0 ? -1 : 1) * (y < 0 ? -1 : 1) * b3(std::abs(x), std::abs(y), c);
-  };
-  return corner(x1, y1) - corner(x0, y1) - corner(x1, y0) + corner(x0, y0);
-}
+using test::howell_b3;
+constexpr auto rect_ff = test::howell_rectangle;
 double irradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
   return HemisphereGatherer(scene).gather(x, n).irradiance.x();
 }

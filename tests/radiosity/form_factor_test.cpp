@@ -7,19 +7,14 @@
 #include <random>
 
 #include "scene/polygon.h"
+#include "tests/closed_forms.h"
 
 namespace rad {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Howell B-3: element at the origin, normal +z; rectangle z = c, x in [0, a], y in [0, b].
-double howell_b3(double a, double b, double c) {
-  const double X = a / c, Y = b / c;
-  return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
-          Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
-         (2 * kPi);
-}
+using test::howell_b3;
 
 TEST(FormFactor, MatchesHowellB3ParallelRectangleThroughCorner) {
   // (a, b, c, F) from shared/ground-truth/formfactors.md.
