@@ -65,6 +65,29 @@ SphericalPolygon::SphericalPolygon(std::vector<Vec3> vertices, std::vector<Vec3>
   normals_ = std::move(n);
 }
 
+bool SphericalPolygon::contains(const Vec3& d) const {
+  if (empty()) return false;
+  const Vec3 u = d.normalized();
+  for (const Vec3& n : normals_) {
+    if (n.dot(u) < -kOnPlane) return false;
+  }
+  return true;
+}
+
+std::optional<Vec3> arc_intersection(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+  const Vec3 na = a0.cross(a1), nb = b0.cross(b1);
+  const Vec3 line = na.cross(nb);
+  const double length = line.norm();
+  if (!(length > 1e-15 * na.norm() * nb.norm())) return std::nullopt;  // one great circle
+  for (const Vec3& p : {Vec3(line / length), Vec3(-line / length)}) {
+    // p is within arc a when it lies between a0 and a1: on the inner side of both end planes.
+    const bool in_a = a0.cross(p).dot(na) > 0 && p.cross(a1).dot(na) > 0;
+    const bool in_b = b0.cross(p).dot(nb) > 0 && p.cross(b1).dot(nb) > 0;
+    if (in_a && in_b) return p;
+  }
+  return std::nullopt;
+}
+
 int SphericalPolygon::side_of(const Vec3& m) const {
   bool any_pos = false, any_neg = false;
   for (const Vec3& v : vertices_) {

@@ -4,6 +4,7 @@
 /// by a plane through x; side tests are one dot product with that plane's normal.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -34,6 +35,10 @@ class SphericalPolygon {
   /// it, so no sliver vertices are made. Either part may be empty.
   std::pair<SphericalPolygon, SphericalPolygon> split(const Vec3& m) const;
 
+  /// True when direction d (any length) is inside or on the boundary: one dot product per edge
+  /// with its plane normal (tolerance 1e-15 after normalizing d).
+  bool contains(const Vec3& d) const;
+
   /// +1 when the polygon lies on the positive side of the plane through x with unit normal m
   /// (touching allowed), -1 on the negative side, 0 when the plane cuts it. Same tolerance as
   /// split(); allocates nothing.
@@ -57,6 +62,12 @@ class SphericalPolygon {
   std::vector<Vec3> vertices_;
   std::vector<Vec3> normals_;  ///< normals_[i]: plane of the edge vertices_[i] -> vertices_[i+1]
 };
+
+/// Where the minor arcs a0-a1 and b0-b1 (unit vectors, each arc shorter than pi) cross: the
+/// normalized cross product of their planes' normals, taking the one of its two antipodes that
+/// lies within both arcs. Nothing when the arcs do not cross, touch only at an endpoint, or lie
+/// on one great circle (the caller then compares endpoints).
+std::optional<Vec3> arc_intersection(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
 
 /// Boolean operations on convex spherical polygons, with the same exact splits the visible-
 /// surface structure uses. Results are sets of convex pieces, which also represent concave

@@ -69,6 +69,42 @@ TEST(SphericalPolygon, ClipsAtTheTangentPlaneExactlyIn3D) {
   EXPECT_EQ(clipped[3], Vec3(0, 1, 0));
 }
 
+TEST(SphericalPredicates, PointInPolygonAndArcIntersection) {
+  const SphericalPolygon square({{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}});
+  EXPECT_TRUE(square.contains({0, 0, 1}));
+  EXPECT_TRUE(square.contains({1, 0.3, 1})) << "on an edge";
+  EXPECT_TRUE(square.contains({1, 1, 1})) << "on a vertex";
+  EXPECT_FALSE(square.contains({1.01, 0, 1}));
+  EXPECT_FALSE(square.contains({0, 0, -1})) << "the antipode of an inside point";
+  // Two arcs crossing at (0, 0, 1) seen from the origin.
+  const auto hit = arc_intersection(Vec3(-1, 0, 1).normalized(), Vec3(1, 0, 1).normalized(),
+                                    Vec3(0, -1, 1).normalized(), Vec3(0, 1, 1).normalized());
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR((*hit - Vec3(0, 0, 1)).norm(), 0, 1e-15);
+  // Disjoint arcs on crossing great circles, arcs touching at an endpoint, and arcs on one
+  // great circle: no crossing point.
+  EXPECT_FALSE(arc_intersection(Vec3(-1, 0, 1).normalized(), Vec3(-0.5, 0, 1).normalized(),
+                                Vec3(0, -1, 1).normalized(), Vec3(0, 1, 1).normalized()));
+  EXPECT_FALSE(arc_intersection(Vec3(0, 0, 1), Vec3(1, 0, 1).normalized(), Vec3(0, 0, 1), Vec3(0, 1, 1).normalized()));
+  EXPECT_FALSE(arc_intersection(Vec3(-1, 0, 1).normalized(), Vec3(0, 0, 1), Vec3(0.2, 0, 1).normalized(),
+                                Vec3(1, 0, 1).normalized()));
+  // Random crossings: the point lies on both great circles and inside the polygon they bound.
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> g;
+  int crossings = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 a0 = Vec3(g(rng), g(rng), 3).normalized(), a1 = Vec3(g(rng), g(rng), 3).normalized();
+    const Vec3 b0 = Vec3(g(rng), g(rng), 3).normalized(), b1 = Vec3(g(rng), g(rng), 3).normalized();
+    if (const auto p = arc_intersection(a0, a1, b0, b1)) {
+      ASSERT_NEAR(a0.cross(a1).normalized().dot(*p), 0, 1e-15);
+      ASSERT_NEAR(b0.cross(b1).normalized().dot(*p), 0, 1e-15);
+      ASSERT_GT(p->z(), 0) << "the crossing, not its antipode";
+      ++crossings;
+    }
+  }
+  EXPECT_GT(crossings, 100) << "too few crossing pairs to test anything";
+}
+
 double total_ff(const std::vector<SphericalPolygon>& pieces, const Vec3& n) {
   double sum = 0;
   for (const auto& p : pieces) sum += p.form_factor(n);
