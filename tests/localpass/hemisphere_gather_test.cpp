@@ -30,13 +30,10 @@ double irradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
 // ---------------------------------------------------------------- closed forms to 1e-12
 
 TEST(HemisphereGather, MatchesHowellB3AndOffsetRectangles) {
-  const double cases[][4] = {{1, 1, 1, 0.138531605994893}, {2, 3, 1, 0.217575206107758},
-                             {0.5, 4, 2, 0.058114170266747}, {10, 10, 1, 0.247971408295310},
-                             {1, 2, 5, 0.022519707332294}};
-  for (const auto& c : cases) {
+  for (const auto& c : test::kHowellB3) {
     SceneBuilder b;
-    b.rectangle(0, c[0], 0, c[1], c[2], true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
-    EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c[3], 1e-12 * c[3]) << c[0] << " " << c[1] << " " << c[2];
+    b.rectangle(0, c.a, 0, c.b, c.c, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+    EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F, 1e-12 * c.F) << c.a << " " << c.b << " " << c.c;
   }
   SceneBuilder b;
   b.rectangle(-0.7, 1.3, 0.2, 2.9, 1.5, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
@@ -45,15 +42,12 @@ TEST(HemisphereGather, MatchesHowellB3AndOffsetRectangles) {
 }
 
 TEST(HemisphereGather, MatchesHowellPerpendicularRectangle) {
-  const double cases[][4] = {{1, 1, 1, 0.055734197002554}, {2, 3, 1, 0.147825402362980},
-                             {3, 1, 2, 0.023989639422154}, {0.5, 4, 2, 0.031064728833287},
-                             {10, 10, 1, 0.221738670869958}};
-  for (const auto& c : cases) {
+  for (const auto& c : test::kHowellPerpendicular) {
     SceneBuilder b;
     const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
     // In the plane y = s, facing -y (towards the receiver at the origin).
-    b.polygon({{0, c[2], 0}, {c[0], c[2], 0}, {c[0], c[2], c[1]}, {0, c[2], c[1]}}, lamp);
-    EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c[3], 1e-12 * c[3]);
+    b.polygon({{0, c.c, 0}, {c.a, c.c, 0}, {c.a, c.c, c.b}, {0, c.c, c.b}}, lamp);
+    EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F, 1e-12 * c.F);
   }
 }
 

@@ -19,19 +19,14 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 TEST(StarkFormula, MatchesHowellRectangles) {
-  const double b3[][4] = {{1, 1, 1, 0.138531605994893}, {2, 3, 1, 0.217575206107758},
-                          {0.5, 4, 2, 0.058114170266747}, {10, 10, 1, 0.247971408295310},
-                          {1, 2, 5, 0.022519707332294}};
-  for (const auto& c : b3) {
-    const std::vector<Vec3> rect{{0, 0, c[2]}, {c[0], 0, c[2]}, {c[0], c[1], c[2]}, {0, c[1], c[2]}};
-    EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c[3], 1e-12 * c[3]);
+  for (const auto& c : test::kHowellB3) {
+    const std::vector<Vec3> rect{{0, 0, c.c}, {c.a, 0, c.c}, {c.a, c.b, c.c}, {0, c.b, c.c}};
+    EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c.F, 1e-12 * c.F);
   }
-  const double perpendicular[][4] = {{1, 1, 1, 0.055734197002554}, {2, 3, 1, 0.147825402362980},
-                                     {3, 1, 2, 0.023989639422154}, {10, 10, 1, 0.221738670869958}};
-  for (const auto& c : perpendicular) {
+  for (const auto& c : test::kHowellPerpendicular) {
     // The bottom edge lies in the tangent plane: the horizon clip is exercised.
-    const std::vector<Vec3> rect{{0, c[2], 0}, {c[0], c[2], 0}, {c[0], c[2], c[1]}, {0, c[2], c[1]}};
-    EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c[3], 1e-12 * c[3]);
+    const std::vector<Vec3> rect{{0, c.c, 0}, {c.a, c.c, 0}, {c.a, c.c, c.b}, {0, c.c, c.b}};
+    EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c.F, 1e-12 * c.F);
   }
   const double expected = test::howell_rectangle(-0.7, 1.3, 0.2, 2.9, 1.5);
   const std::vector<Vec3> offset{{-0.7, 0.2, 1.5}, {1.3, 0.2, 1.5}, {1.3, 2.9, 1.5}, {-0.7, 2.9, 1.5}};

@@ -17,15 +17,11 @@ constexpr double kPi = std::numbers::pi;
 using test::howell_b3;
 
 TEST(FormFactor, MatchesHowellB3ParallelRectangleThroughCorner) {
-  // (a, b, c, F) from shared/ground-truth/formfactors.md.
-  const double cases[][4] = {{1, 1, 1, 0.138531605994893}, {2, 3, 1, 0.217575206107758},
-                             {0.5, 4, 2, 0.058114170266747}, {10, 10, 1, 0.247971408295310},
-                             {1, 2, 5, 0.022519707332294}};
-  for (const auto& c : cases) {
-    const std::vector<Vec3> rect{{0, 0, c[2]}, {c[0], 0, c[2]}, {c[0], c[1], c[2]}, {0, c[1], c[2]}};
+  for (const auto& c : test::kHowellB3) {
+    const std::vector<Vec3> rect{{0, 0, c.c}, {c.a, 0, c.c}, {c.a, c.b, c.c}, {0, c.b, c.c}};
     const double ff = point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect);
-    EXPECT_NEAR(ff, c[3], 1e-12 * c[3]) << "a=" << c[0] << " b=" << c[1] << " c=" << c[2];
-    EXPECT_NEAR(ff, howell_b3(c[0], c[1], c[2]), 1e-12 * c[3]);
+    EXPECT_NEAR(ff, c.F, 1e-12 * c.F) << "a=" << c.a << " b=" << c.b << " c=" << c.c;
+    EXPECT_NEAR(ff, howell_b3(c.a, c.b, c.c), 1e-12 * c.F);
   }
 }
 
@@ -40,13 +36,10 @@ TEST(FormFactor, OffsetRectangleBySignedSuperpositionOfCorners) {
 
 TEST(FormFactor, MatchesHowellPerpendicularRectangle) {
   // Element at the origin, normal +z; rectangle in the plane y = s, x in [0, w], z in [0, h].
-  const double cases[][4] = {{1, 1, 1, 0.055734197002554}, {2, 3, 1, 0.147825402362980},
-                             {3, 1, 2, 0.023989639422154}, {0.5, 4, 2, 0.031064728833287},
-                             {10, 10, 1, 0.221738670869958}};
-  for (const auto& c : cases) {
-    const double w = c[0], h = c[1], s = c[2];
+  for (const auto& c : test::kHowellPerpendicular) {
+    const double w = c.a, h = c.b, s = c.c;
     const std::vector<Vec3> rect{{0, s, 0}, {w, s, 0}, {w, s, h}, {0, s, h}};
-    EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c[3], 1e-12 * c[3])
+    EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c.F, 1e-12 * c.F)
         << "w=" << w << " h=" << h << " s=" << s;
   }
 }
