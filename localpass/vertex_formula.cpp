@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "radiosity/form_factor.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -28,27 +29,17 @@ double stark_vertex_term(double x, double y, double m_in, bool in_vertical, doub
 double stark_G(double x, double y, const Vec3& k) { return -0.5 * k.z() * std::atan(k.y() * x - k.x() * y); }
 
 double stark_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {
-  // Local frame: u, v span the tangent plane, n is "up"; heights are n . (p - x).
-  const PlaneFrame frame(Vec3::Zero(), n);
-  std::vector<Vec3> local;
+  // Horizon clip at a small height h above x's tangent plane, in 3D (the same clip the
+  // radiosity solver's Lambert formula uses, moved up by h), then the local frame: u, v span
+  // the tangent plane, n is "up".
   double size = 0;
-  for (const Vec3& p : polygon) {
-    const Vec3 d = p - x;
-    local.emplace_back(frame.u.dot(d), frame.v.dot(d), n.dot(d));
-    size = std::max(size, d.norm());
-  }
-  // Horizon clip at a small height (Sutherland-Hodgman against z >= h), in 3D.
+  for (const Vec3& p : polygon) size = std::max(size, (p - x).norm());
   const double h = kStarkHorizon * size;
+  const PlaneFrame frame(Vec3::Zero(), n);
   std::vector<Vec3> clipped;
-  for (size_t i = 0; i < local.size(); ++i) {
-    const Vec3& a = local[i];
-    const Vec3& b = local[(i + 1) % local.size()];
-    if (a.z() >= h) clipped.push_back(a);
-    if ((a.z() > h && b.z() < h) || (a.z() < h && b.z() > h)) {
-      Vec3 c = a + ((h - a.z()) / (b.z() - a.z())) * (b - a);
-      c.z() = h;
-      clipped.push_back(c);
-    }
+  for (const Vec3& p : clip_to_halfspace(polygon, x + h * n, n)) {
+    const Vec3 d = p - x;
+    clipped.emplace_back(frame.u.dot(d), frame.v.dot(d), std::max(n.dot(d), h));
   }
   const size_t count = clipped.size();
   if (count < 3) return 0;

@@ -47,7 +47,7 @@ constexpr double kStarkHorizon = 1e-12;
 /// FF = |sum_i G(v_i, k_in) - G(v_i, k_out)| / pi, with k the edges' plane normals computed in
 /// 3D before projection (see stark_G). The polygon is first clipped at the height
 /// kStarkHorizon * (its largest distance from x) above x's tangent plane. Measured against
-/// Lambert's formula (tests/localpass/vertex_formula_test.cpp): 2.8e-15 worst over 5000 random
+/// Lambert's formula (tests/localpass/vertex_formula_test.cpp): 2.4e-15 worst over 5000 random
 /// convex and concave polygons, many crossing the horizon; on a polygon of size s at unit
 /// distance the vertex terms (order s) cancel to a result of order s^2, so the relative error
 /// is ~5e-17 / s (4.7e-11 at s = 1e-6, 4.6e-8 at 1e-9). Cost O(#V).

@@ -154,9 +154,14 @@ std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file
     // vertices (ImporterT::add_face), which is what a polygon soup wants: not worth a warning.
     if (line.find("complex edge") != std::string::npos) continue;
     // A face OpenMesh could not add (unparsable or non-finite vertex, repeated vertex) would be
-    // lost without a trace: that is an error, not a warning.
-    if (line.find("ace") != std::string::npos || line.find("vertex index") != std::string::npos) {
-      throw InputError(where + ": cannot read every face of '" + file.string() + "' (" + line + ")");
+    // lost without a trace: that is an error, not a warning. These are the messages of
+    // OpenMesh 9's importer and readers that mean a face was dropped; its other remarks (e.g.
+    // PLY properties it skips) stay warnings.
+    for (const char* lost : {"Face contains invalid vertex index", "Face has equal vertices",
+                             "invalid faces, that could not be added"}) {
+      if (line.find(lost) != std::string::npos) {
+        throw InputError(where + ": cannot read every face of '" + file.string() + "' (" + line + ")");
+      }
     }
     warnings.push_back(where + ": " + file.filename().string() + ": " + line);
   }

@@ -27,9 +27,6 @@ void expect_tiling(const Scene& scene, const std::vector<Patch>& patches, double
     area[p.polygon] += p.area;
     EXPECT_LE(longest_edge(p.corners), size * std::sqrt(2.0) * (1 + 1e-12));
     EXPECT_GT(p.normal.dot(scene.polygons[p.polygon].normal), 1 - 1e-12) << "orientation kept";
-    double a;
-    Vec3 c;
-    element_geometry(p.corners, &a, &c);
     EXPECT_GT(newell_vector(p.corners).dot(p.normal), 0) << "counter-clockwise from the front";
   }
   for (size_t i = 0; i < scene.polygons.size(); ++i) {
