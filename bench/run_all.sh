@@ -57,11 +57,11 @@ table=$("$build/bench/solve_bench")
 echo "wrote $out/solve.md" >&2
 
 # Exact hemisphere gather (Cornell box meshed into ~1k, 3k, 10k patches, all emitting)
-table=$("$build/bench/hemisphere_bench" 400)
+table=$("$build/bench/hemisphere_bench" 40)
 {
   echo "# Exact hemisphere gather on the Cornell box"
   echo
-  echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/hemisphere_bench 400\`): irradiance at 400 seeded"
+  echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/hemisphere_bench 40\`): irradiance at 40 seeded"
   echo "points on the floor, back wall, right wall and ceiling, with the box's polygons cut into patches"
   echo "(as \`radiosity solve\` cuts them) and every patch emitting, every polygon occluding."
   machine

@@ -1,4 +1,4 @@
-// `radiosity probe SCENE --points P.csv [--method hemisphere] [-o OUT.csv]`: exact irradiance
+// `radiosity probe SCENE --points P.csv [--method hemisphere|vertex] [-o OUT.csv]`: exact irradiance
 // at given points, direct lighting only (polygons radiate their emission, all occlude).
 #include <tbb/parallel_for.h>
 
@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "localpass/hemisphere_gather.h"
+#include "localpass/vertex_tracing.h"
 #include "scene/error.h"
 #include "viz/atomic_file.h"
 #include "viz/points_csv.h"
@@ -31,7 +32,10 @@ void run_probe(const ProbeOptions& o) {
   const ThreadLimit limit(o.threads);
   const Scene scene = load_scene_reporting(o.scene);
   const std::vector<ProbePoint> points = read_points_csv(o.points);
-  const HemisphereGatherer gatherer(scene);
+  // Both exact methods see the same faces (the polygons, concave ones as triangles).
+  const bool vertex = o.method == "vertex";
+  const HemisphereGatherer hemisphere(scene);
+  const VertexTracer tracer(scene);
 
   std::vector<Rgb> irradiance(points.size());
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
@@ -40,7 +44,8 @@ void run_probe(const ProbeOptions& o) {
   // Each point is independent and written to its own slot: output order and values do not
   // depend on the thread count.
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-    irradiance[i] = gatherer.gather(points[i].x, points[i].n).irradiance;
+    irradiance[i] = vertex ? tracer.gather(points[i].x, points[i].n).irradiance
+                           : hemisphere.gather(points[i].x, points[i].n).irradiance;
     const size_t finished = ++done;
     if (finished % 256 == 0) bar.update(static_cast<double>(finished) / points.size(), std::to_string(finished) + " points");
   });
@@ -71,8 +76,10 @@ void add_probe_command(CLI::App& app, Run& run) {
                                      "emission, every polygon occludes from both sides.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   sub->add_option("-p,--points", o->points, "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")->required();
-  sub->add_option("-m,--method", o->method, "hemisphere: exact projection onto the hemisphere (paper 004)")
-      ->check(CLI::IsMember({"hemisphere"}))
+  sub->add_option("-m,--method", o->method,
+                  "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing with "
+                  "angular spans (paper 001). Both exact; they agree to 1e-9")
+      ->check(CLI::IsMember({"hemisphere", "vertex"}))
       ->capture_default_str();
   sub->add_option("-o,--output", o->output, "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
   sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));

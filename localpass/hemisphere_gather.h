@@ -2,6 +2,7 @@
 /// Exact irradiance at a point by hemisphere projection (paper 004 §3; DESIGN.md §4).
 #include <vector>
 
+#include "localpass/emitting_faces.h"
 #include "scene/scene.h"
 
 namespace rad {
@@ -33,8 +34,10 @@ class HemisphereGatherer {
  public:
   /// Exitance per polygon: the materials' emission (direct lighting only).
   explicit HemisphereGatherer(const Scene& scene);
-  /// Exitance per polygon given (e.g. radiosities of a solution); #exitance == #polygons.
+  /// Exitance per polygon given; #exitance == #polygons.
   HemisphereGatherer(const Scene& scene, std::vector<Rgb> exitance);
+  /// Any faces (e.g. faces_from_solution: every element radiates its radiosity).
+  HemisphereGatherer(const Scene& scene, std::vector<EmittingFace> faces);
 
   /// Irradiance at x (on or off a surface) for the unit receiver normal n. Thread-safe.
   /// Cost: O(P log P) to order the P convex pieces, then one BSP insertion per piece above the
@@ -42,16 +45,10 @@ class HemisphereGatherer {
   GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments = false) const;
 
  private:
-  /// A convex piece of a polygon: the polygon itself when convex, else a triangle of it.
-  struct Piece {
-    int polygon;
-    std::vector<Vec3> vertices;
-    Vec3 centre;
-    double radius;
-  };
   const Scene& scene_;
-  std::vector<Rgb> exitance_;
-  std::vector<Piece> pieces_;
+  std::vector<EmittingFace> faces_;
+  std::vector<Vec3> centres_;     ///< Per face: centre of its bounding sphere...
+  std::vector<double> radii_;     ///< ...and its radius.
   double in_plane_ = 0;  ///< |plane offset| below this: x is in the polygon's plane
 };
 

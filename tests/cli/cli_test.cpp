@@ -212,6 +212,24 @@ TEST(Cli, ProbeWritesTheDocumentedCsvIndependentOfThreads) {
   EXPECT_EQ(rows[3][4], 1.0) << "(0, 2, 0) normalized";
 }
 
+TEST(Cli, ProbeVertexMethodAgreesWithHemisphere) {
+  const std::string args = "probe " + quoted(kRoot / "data/cornell-box/scene.json") + " --points " +
+                           quoted(kRoot / "data/cornell-box/probe-points.csv");
+  const Result hemisphere = run(args + " --method hemisphere");
+  const Result vertex = run(args + " --method vertex");
+  ASSERT_EQ(hemisphere.exit_code, 0) << hemisphere.err;
+  ASSERT_EQ(vertex.exit_code, 0) << vertex.err;
+  std::string header;
+  const auto h = parse_csv(hemisphere.out, &header);
+  const auto v = parse_csv(vertex.out, &header);
+  ASSERT_EQ(h.size(), v.size());
+  ASSERT_GT(h.size(), 0u);
+  for (size_t i = 0; i < h.size(); ++i) {
+    for (int c = 6; c < 9; ++c) EXPECT_NEAR(v[i][c], h[i][c], std::max(1e-9 * h[i][c], 1e-12)) << "row " << i;
+  }
+  EXPECT_NE(run(args + " --method montecarlo").exit_code, 0);
+}
+
 TEST(Cli, ProbeRejectsMalformedPointsNamingTheLine) {
   const std::string scene = quoted(kRoot / "data/cornell-box/scene.json");
   const std::pair<const char*, const char*> cases[] = {

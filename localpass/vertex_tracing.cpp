@@ -1,0 +1,467 @@
+#include "localpass/vertex_tracing.h"
+
+#include <algorithm>
+#include <limits>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <numeric>
+#include <unordered_map>
+
+#include "localpass/angular_spans.h"
+#include "localpass/image_box_tree.h"
+#include "localpass/interpenetration.h"
+#include "localpass/vertex_formula.h"
+#include "scene/error.h"
+#include "scene/polygon.h"
+
+namespace rad {
+namespace {
+
+constexpr double kNape = VertexTracer::kNapeAngle;
+/// Emitter culling keeps everything within this relative distance of an emitter's box: more
+/// than any cone radius used (the nape angle plus the spread of merged candidates).
+constexpr double kCullMargin = 1e-6;
+
+Vec2 image_of(const Vec3& d) { return {d.x() / d.z(), d.y() / d.z()}; }
+
+/// Distance between image points relative to 1 + |q|: about the angle between the directions
+/// near the zenith, and the same relative precision next to the horizon.
+double relative_distance(const Vec2& a, const Vec2& b) {
+  return (a - b).norm() / (1 + std::min(a.norm(), b.norm()));
+}
+
+/// The box of image points, padded by `radius` relative to their size.
+ImageBox padded_box(const std::vector<Vec2>& points, double radius) {
+  ImageBox box;
+  double size = 0;
+  for (const Vec2& q : points) {
+    box.extend(q);
+    size = std::max(size, q.norm());
+  }
+  const double pad = radius * (1 + size);
+  box.min().array() -= pad;
+  box.max().array() += pad;
+  return box;
+}
+
+/// A face as seen from x: local coordinates (x at the origin, receiver normal +z), clipped at
+/// the horizon height, as a loop whose interior is on the k . d >= 0 side of every edge plane.
+struct LocalFace {
+  int face = -1;
+  Vec3 normal;
+  double offset = 0;
+  Rgb exitance = Rgb::Zero();
+  std::vector<Vec3> dirs;        ///< Unit vertex directions...
+  std::vector<Vec2> image;       ///< ...and their images q = (d_x, d_y) / d_z.
+  std::vector<Vec3> k;           ///< Edge i (dirs i -> i+1): unit normal of its plane through x (0: degenerate).
+  std::vector<char> silhouette;  ///< Edge i lies on its polygon's boundary or on the horizon.
+  int first_feature = 0;         ///< Edge i is feature first_feature + i.
+  int first_vertex = 0;          ///< Vertex i is candidate vertex_candidate[first_vertex + i].
+  ImageBox box;
+};
+
+/// An edge or an intersection segment: a great-circle arc a -> b of plane k (unit, a x b).
+struct Feature {
+  Vec3 a, b, k;
+  int polygon = -1;  ///< -1 for intersection segments (they may cross anything)
+  bool silhouette = false;
+};
+
+struct Candidate {
+  Vec3 d;
+  Vec2 q;
+  bool intrinsic;  ///< A vertex (polygon vertex, horizon vertex or intersection end)
+};
+
+/// Clips a convex loop with per-edge flags to z >= h (Sutherland-Hodgman); the new edge along
+/// the cut is flagged as a silhouette (the horizon ends the face there).
+void clip_to_height(std::vector<Vec3>& loop, std::vector<char>& flags, double h) {
+  std::vector<Vec3> out;
+  std::vector<char> out_flags;
+  const size_t n = loop.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& p = loop[i];
+    const Vec3& q = loop[(i + 1) % n];
+    const bool p_in = p.z() >= h, q_in = q.z() >= h;
+    const auto cut = [&] {
+      Vec3 c = p + (h - p.z()) / (q.z() - p.z()) * (q - p);
+      c.z() = h;
+      return c;
+    };
+    if (p_in) {
+      out.push_back(p);
+      out_flags.push_back(flags[i]);
+      if (!q_in) {
+        out.push_back(cut());
+        out_flags.push_back(1);
+      }
+    } else if (q_in) {
+      out.push_back(cut());
+      out_flags.push_back(flags[i]);
+    }
+  }
+  loop = std::move(out);
+  flags = std::move(out_flags);
+}
+
+/// Where the arcs of p and q cross, if they do (ends included within the nape angle, so that a
+/// crossing at a vertex is found and then merged with it).
+bool arcs_cross(const Feature& p, const Feature& q, Vec3* where) {
+  Vec3 c = p.k.cross(q.k);
+  const double len = c.norm();
+  if (!(len > 1e-14)) return false;  // the same great circle (collinear edges meet at their ends)
+  c /= len;
+  if (c.dot(p.a + p.b) < 0) c = -c;
+  if (c.dot(q.a + q.b) <= 0) return false;
+  for (const Feature* f : {&p, &q}) {
+    if (f->a.cross(c).dot(f->k) < -kNape || c.cross(f->b).dot(f->k) < -kNape) return false;
+  }
+  *where = c;
+  return true;
+}
+
+/// Union-find over candidates.
+struct Clusters {
+  std::vector<int> parent;
+  explicit Clusters(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  bool unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    parent[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+};
+
+uint64_t pair_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
+
+/// What one face shows in the cone of radius `radius` around d (001 Algorithm 1's three cases,
+/// Fig. 5), plus the features and vertices it brought (for the bookkeeping of §5).
+void classify(const LocalFace& f, const Vec3& d, const Vec2& q, double radius, std::vector<SpanEntry>& entries,
+              std::vector<int>& features, std::vector<int>& vertices) {
+  const int n = static_cast<int>(f.dirs.size());
+  const auto next = [n](int i) { return (i + 1) % n; };
+  const auto prev = [n](int i) { return (i + n - 1) % n; };
+  SpanEntry entry;
+  entry.normal = f.normal;
+  entry.offset = f.offset;
+  entry.order = f.face;
+  entry.exitance = f.exitance;
+
+  int nearest = -1;
+  double nearest_distance = radius;
+  int near_count = 0;
+  for (int i = 0; i < n; ++i) {
+    const double distance = relative_distance(f.image[i], q);
+    if (distance < radius) {
+      ++near_count;
+      if (distance < nearest_distance) {
+        nearest_distance = distance;
+        nearest = i;
+      }
+    }
+  }
+  if (near_count == n) return;  // smaller than the cone: subtends < pi radius^2
+  if (nearest >= 0) {
+    // A vertex span. Consecutive vertices inside the cone collapse into one (a very short edge
+    // seen from afar): the span runs from the edge leaving the run to the edge entering it.
+    int first = nearest, last = nearest;
+    while (relative_distance(f.image[prev(first)], q) < radius) first = prev(first);
+    while (relative_distance(f.image[next(last)], q) < radius) last = next(last);
+    const Vec3& k_out = f.k[last];
+    const Vec3& k_in = f.k[prev(first)];
+    if (k_out == Vec3::Zero() || k_in == Vec3::Zero()) return;
+    entry.kind = SpanEntry::Kind::vertex;
+    entry.start = k_out;
+    entry.end = k_in;
+    entries.push_back(entry);
+    for (int i = prev(first);; i = next(i)) {
+      features.push_back(f.first_feature + i);
+      if (i == last) break;
+    }
+    for (int i = first;; i = next(i)) {
+      vertices.push_back(f.first_vertex + i);
+      if (i == last) break;
+    }
+    return;
+  }
+  int best = -1;
+  double best_distance = radius;
+  bool inside = true;
+  for (int i = 0; i < n; ++i) {
+    if (f.k[i] == Vec3::Zero()) continue;
+    if (f.k[i].dot(d) <= 0) inside = false;
+    const double distance = relative_line_distance(f.k[i], q);
+    if (distance < best_distance && f.dirs[i].cross(d).dot(f.k[i]) >= 0 && d.cross(f.dirs[next(i)]).dot(f.k[i]) >= 0) {
+      best_distance = distance;
+      best = i;
+    }
+  }
+  if (best >= 0) {
+    entry.kind = SpanEntry::Kind::edge;
+    entry.start = f.k[best];
+    entries.push_back(entry);
+    features.push_back(f.first_feature + best);
+    return;
+  }
+  if (inside) {
+    entry.kind = SpanEntry::Kind::full;
+    entries.push_back(entry);
+  }
+}
+
+}  // namespace
+
+VertexTracer::VertexTracer(const Scene& scene) : VertexTracer(scene, faces_from_polygons(scene)) {}
+
+VertexTracer::VertexTracer(const Scene& scene, std::vector<EmittingFace> faces)
+    : scene_(scene), faces_(std::move(faces)) {
+  for (const EmittingFace& f : faces_) {
+    if (f.polygon < 0 || f.polygon >= static_cast<int>(scene.polygons.size()) || f.vertices.size() < 3 ||
+        f.on_boundary.size() != f.vertices.size()) {
+      throw Error("vertex tracing: a face refers to polygon " + std::to_string(f.polygon) + " or has " +
+                  std::to_string(f.vertices.size()) + " vertices and " + std::to_string(f.on_boundary.size()) +
+                  " edge flags");
+    }
+  }
+  for (const auto& [a, b] : interpenetration_segments(scene)) intersections_.push_back({a, b});
+  const double diagonal = scene.bounds().diagonal();
+  in_plane_ = 1e-12 * diagonal;
+  horizon_ = kStarkHorizon * diagonal;
+}
+
+VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Options& options) const {
+  VertexTraceResult result;
+  const PlaneFrame frame(Vec3::Zero(), n);
+  const auto local = [&](const Vec3& p) {
+    const Vec3 r = p - x;
+    return Vec3(frame.u.dot(r), frame.v.dot(r), n.dot(r));
+  };
+
+  // 1. The faces above the horizon, in local coordinates.
+  std::vector<LocalFace> faces;
+  ImageBox emitters;
+  for (size_t i = 0; i < faces_.size(); ++i) {
+    const EmittingFace& face = faces_[i];
+    const Polygon& polygon = scene_.polygons[face.polygon];
+    const double offset = polygon.normal.dot(face.vertices.front() - x);
+    if (std::abs(offset) <= in_plane_) continue;  // x in its plane: no solid angle
+    std::vector<Vec3> loop;
+    std::vector<char> flags(face.on_boundary.begin(), face.on_boundary.end());
+    for (const Vec3& v : face.vertices) loop.push_back(local(v));
+    if (offset < 0) {
+      // x in front: reverse so the interior is on the k . d >= 0 side of k_i = v_i x v_{i+1}.
+      const size_t m = loop.size();
+      std::reverse(loop.begin(), loop.end());
+      std::vector<char> reversed(m);
+      for (size_t j = 0; j < m; ++j) reversed[j] = flags[(2 * m - 2 - j) % m];
+      flags = std::move(reversed);
+    }
+    clip_to_height(loop, flags, horizon_);
+    // Drop repeated points (a clip exactly through a vertex).
+    for (size_t j = 0; j < loop.size() && loop.size() >= 3;) {
+      if ((loop[j] - loop[(j + 1) % loop.size()]).norm() <= 1e-15 * loop[j].norm()) {
+        loop.erase(loop.begin() + static_cast<long>((j + 1) % loop.size()));
+        flags.erase(flags.begin() + static_cast<long>(j));
+      } else {
+        ++j;
+      }
+    }
+    if (loop.size() < 3) continue;
+    LocalFace lf;
+    lf.face = static_cast<int>(i);
+    lf.normal = local(x + polygon.normal);
+    lf.offset = offset;
+    // The receiver sees the front when it lies in front of the plane (offset < 0).
+    lf.exitance = offset < 0 ? face.exitance : Rgb::Zero();
+    const size_t m = loop.size();
+    for (size_t j = 0; j < m; ++j) {
+      lf.dirs.push_back(loop[j].normalized());
+      lf.image.push_back(image_of(loop[j]));
+      const Vec3 k = loop[j].cross(loop[(j + 1) % m]);
+      lf.k.push_back(k.norm() > 0 ? Vec3(k.normalized()) : Vec3::Zero());
+    }
+    lf.silhouette = std::move(flags);
+    lf.box = padded_box(lf.image, kNape);
+    if (lf.exitance != Rgb::Zero()) emitters.extend(padded_box(lf.image, kCullMargin));
+    faces.push_back(std::move(lf));
+  }
+  if (emitters.isEmpty()) return result;
+  ImageBox region = emitters;
+  if (!options.cull_to_emitters) {
+    region = ImageBox(Vec2::Constant(-std::numeric_limits<double>::max()), Vec2::Constant(std::numeric_limits<double>::max()));
+  }
+  std::erase_if(faces, [&](const LocalFace& f) { return !f.box.intersects(region); });
+
+  // 2. Features: face edges, then intersection segments above the horizon.
+  std::vector<Feature> features;
+  std::vector<ImageBox> feature_boxes;
+  for (LocalFace& f : faces) {
+    f.first_feature = static_cast<int>(features.size());
+    const size_t m = f.dirs.size();
+    for (size_t j = 0; j < m; ++j) {
+      features.push_back({f.dirs[j], f.dirs[(j + 1) % m], f.k[j], faces_[f.face].polygon, f.silhouette[j] != 0});
+      feature_boxes.push_back(padded_box({f.image[j], f.image[(j + 1) % m]}, kNape));
+    }
+  }
+  std::vector<Candidate> candidates;
+  for (const Segment& s : intersections_) {
+    Vec3 a = local(s.a), b = local(s.b);
+    if (a.z() < horizon_ && b.z() < horizon_) continue;
+    if (a.z() < horizon_) a += (horizon_ - a.z()) / (b.z() - a.z()) * (b - a);
+    if (b.z() < horizon_) b += (horizon_ - b.z()) / (a.z() - b.z()) * (a - b);
+    const Vec3 k = a.cross(b);
+    if (!(k.norm() > 0)) continue;
+    const Vec3 da = a.normalized(), db = b.normalized();
+    const ImageBox box = padded_box({image_of(a), image_of(b)}, kNape);
+    if (!box.intersects(region)) continue;
+    features.push_back({da, db, k.normalized(), -1, true});
+    feature_boxes.push_back(box);
+    candidates.push_back({da, image_of(a), true});
+    candidates.push_back({db, image_of(b), true});
+  }
+
+  // 3. Candidates: every vertex, and every apparent crossing of a silhouette with any feature
+  // of another polygon (two edges inside polygons cannot both be seen; 001 §4.2).
+  std::vector<int> vertex_candidate;
+  for (LocalFace& f : faces) {
+    f.first_vertex = static_cast<int>(vertex_candidate.size());
+    for (size_t j = 0; j < f.dirs.size(); ++j) {
+      vertex_candidate.push_back(static_cast<int>(candidates.size()));
+      candidates.push_back({f.dirs[j], f.image[j], true});
+    }
+  }
+  std::vector<int> silhouettes;
+  std::vector<ImageBox> silhouette_boxes;
+  for (size_t i = 0; i < features.size(); ++i) {
+    if (features[i].silhouette && features[i].k != Vec3::Zero()) {
+      silhouettes.push_back(static_cast<int>(i));
+      silhouette_boxes.push_back(feature_boxes[i]);
+    }
+  }
+  const ImageBoxTree all_features(feature_boxes);
+  const ImageBoxTree silhouette_tree(silhouette_boxes);
+  std::unordered_map<uint64_t, int> crossing;
+  silhouette_tree.pairs(all_features, [&](int s_index, int other) {
+    const int s = silhouettes[s_index];
+    if (s == other || (features[other].silhouette && other < s)) return;  // each pair once
+    const Feature& p = features[s];
+    const Feature& q = features[other];
+    if (q.k == Vec3::Zero() || (p.polygon >= 0 && p.polygon == q.polygon)) return;
+    Vec3 where;
+    if (!arcs_cross(p, q, &where)) return;
+    crossing.emplace(pair_key(s, other), static_cast<int>(candidates.size()));
+    candidates.push_back({where, image_of(where), false});
+  });
+  result.candidates = static_cast<int>(candidates.size());
+
+  // 4. Candidates closer than the nape angle (relative image distance) are one conjunctive
+  // vertex. Sorted by log(1 + |q|), which two such candidates differ in by less than the angle.
+  Clusters clusters(candidates.size());
+  {
+    std::vector<std::pair<double, int>> order;
+    order.reserve(candidates.size());
+    for (size_t i = 0; i < candidates.size(); ++i) order.emplace_back(std::log1p(candidates[i].q.norm()), static_cast<int>(i));
+    std::sort(order.begin(), order.end());
+    for (size_t i = 0; i < order.size(); ++i) {
+      for (size_t j = i + 1; j < order.size() && order[j].first - order[i].first < kNape; ++j) {
+        const int a = order[i].second, b = order[j].second;
+        if (relative_distance(candidates[a].q, candidates[b].q) < kNape) clusters.unite(a, b);
+      }
+    }
+  }
+
+  // 5. Trace one cone per cluster. If a cone meets a vertex or a pair of edges whose own
+  // candidate went to another cluster (an "unexpected incidence"), the two clusters are one
+  // conjunctive vertex: merge and trace again, so nothing is counted twice (001 §3.4, §5).
+  std::vector<ImageBox> face_boxes;
+  for (const LocalFace& f : faces) face_boxes.push_back(f.box);
+  const ImageBoxTree face_tree(face_boxes);
+  struct Traced {
+    Vec3 d;
+    double radius;
+    std::vector<SpanEntry> entries;
+  };
+  std::vector<Traced> traced;
+  std::vector<SpanEntry> entries;
+  std::vector<int> incident_features, incident_vertices;
+  for (int round = 0;; ++round) {
+    traced.clear();
+    std::vector<std::vector<int>> groups;
+    {
+      std::unordered_map<int, int> group_of;
+      for (size_t i = 0; i < candidates.size(); ++i) {
+        const int root = clusters.find(static_cast<int>(i));
+        const auto [it, added] = group_of.emplace(root, static_cast<int>(groups.size()));
+        if (added) groups.emplace_back();
+        groups[it->second].push_back(static_cast<int>(i));
+      }
+    }
+    bool merged = false;
+    for (const std::vector<int>& group : groups) {
+      int representative = group.front();
+      for (const int c : group) {
+        if (candidates[c].intrinsic) {
+          representative = c;
+          break;
+        }
+      }
+      const Vec3 d = candidates[representative].d;
+      const Vec2 q = candidates[representative].q;
+      if (!region.contains(q)) continue;  // culled: no emitter can show here
+      double spread = 0;
+      for (const int c : group) spread = std::max(spread, relative_distance(candidates[c].q, q));
+      const double radius = kNape + spread;
+      entries.clear();
+      incident_features.clear();
+      incident_vertices.clear();
+      const double reach = radius * (1 + q.norm());
+      face_tree.query(ImageBox(q - Vec2::Constant(reach), q + Vec2::Constant(reach)), [&](int f) {
+        classify(faces[f], d, q, radius, entries, incident_features, incident_vertices);
+      });
+      const int root = clusters.find(group.front());
+      if (round < 8) {
+        // Only candidates near the cone count: two nearly parallel features can both pass
+        // through it and still cross far away, which is a different vertex.
+        const auto merge = [&](int candidate) {
+          if (relative_distance(candidates[candidate].q, q) < 4 * radius && clusters.unite(root, candidate)) {
+            merged = true;
+            ++result.slow_path;
+          }
+        };
+        for (const int v : incident_vertices) merge(vertex_candidate[v]);
+        for (size_t a = 0; a < incident_features.size(); ++a) {
+          for (size_t b = a + 1; b < incident_features.size(); ++b) {
+            const auto it = crossing.find(pair_key(incident_features[a], incident_features[b]));
+            if (it != crossing.end()) merge(it->second);
+          }
+        }
+      }
+      if (group.size() > 1) ++result.conjunctive;
+      traced.push_back({d, radius, entries});
+    }
+    if (!merged) break;
+    result.conjunctive = 0;
+  }
+
+  // 6. Sum the contributions (001 eq. 9).
+  Rgb sum = Rgb::Zero();
+  for (const Traced& t : traced) {
+    bool emits = false;
+    for (const SpanEntry& e : t.entries) emits = emits || e.exitance != Rgb::Zero();
+    if (emits) sum += angular_span_sum(t.d, t.entries, t.radius);
+  }
+  result.traced = static_cast<int>(traced.size());
+  result.irradiance = sum / std::numbers::pi;
+  return result;
+}
+
+}  // namespace rad

@@ -1,0 +1,226 @@
+// Vertex tracing against the closed forms, the other exact method and its own fast paths.
+#include "localpass/vertex_tracing.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <random>
+
+#include "localpass/hemisphere_gather.h"
+#include "localpass/interpenetration.h"
+#include "radiosity/solver.h"
+#include "scene/ray_caster.h"
+#include "scene/scene_loader.h"
+#include "tests/closed_forms.h"
+#include "tests/random_scenes.h"
+#include "tests/scene_builder.h"
+
+namespace rad {
+namespace {
+
+using test::SceneBuilder;
+
+double traced(const Scene& scene, const Vec3& x, const Vec3& n) { return VertexTracer(scene).gather(x, n).irradiance.x(); }
+
+TEST(VertexTracing, MatchesHowellB3) {
+  for (const auto& c : test::kHowellB3) {
+    SceneBuilder b;
+    b.rectangle(0, c.a, 0, c.b, c.c, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+    EXPECT_NEAR(traced(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F, 1e-12 * c.F) << c.a << " " << c.b << " " << c.c;
+  }
+}
+
+TEST(VertexTracing, BlockerOverLight) {
+  SceneBuilder b;
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+  const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
+  b.rectangle(-1, 1, -1, 1, 2, true, lamp);
+  b.rectangle(-0.3, 0.5, -0.2, 0.9, 1, true, grey);
+  const Vec3 x(0.1, 0.05, 0);
+  const double h = HemisphereGatherer(b.scene()).gather(x, Vec3::UnitZ()).irradiance.x();
+  EXPECT_NEAR(traced(b.scene(), x, Vec3::UnitZ()), h, 1e-12);
+}
+
+/// The two exact methods agree within 1e-9 relative or 1e-12 absolute (per channel).
+::testing::AssertionResult agree(const Rgb& vertex, const Rgb& hemisphere) {
+  for (int c = 0; c < 3; ++c) {
+    const double tolerance = std::max(1e-9 * std::abs(hemisphere[c]), 1e-12);
+    if (!(std::abs(vertex[c] - hemisphere[c]) <= tolerance)) {
+      return ::testing::AssertionFailure() << "channel " << c << ": vertex " << vertex[c] << " hemisphere "
+                                           << hemisphere[c] << " (difference " << vertex[c] - hemisphere[c] << ")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+/// Compares both methods at every site of a scene; counts what the tracer met.
+struct Tally {
+  int points = 0, disagreements = 0, conjunctive = 0, slow_path = 0, interpenetrating = 0, occluded = 0;
+  void compare(const test::RandomScene& r, const std::string& label) {
+    const VertexTracer tracer(r.scene);
+    const HemisphereGatherer hemisphere(r.scene);
+    for (const auto& site : r.sites) {
+      ++points;
+      const VertexTraceResult v = tracer.gather(site.x, site.n);
+      const GatherResult h = hemisphere.gather(site.x, site.n, true);
+      conjunctive += v.conjunctive > 0;
+      slow_path += v.slow_path > 0;
+      // Occluded: some polygon shows in more than one fragment or not whole (cheap proxy: a
+      // fragment count above the polygon count).
+      occluded += h.fragments.size() > r.scene.polygons.size();
+      const auto result = agree(v.irradiance, h.irradiance);
+      if (!result && ++disagreements <= 10) ADD_FAILURE() << label << " at " << site.x.transpose() << ": " << result.message();
+    }
+  }
+};
+
+TEST(VertexTracing, AgreesWithHemisphereOnRandomScenes) {
+  Tally tally;
+  for (uint64_t seed = 1; seed <= 2000; ++seed) {
+    test::RandomSceneMaker maker(seed);
+    const test::RandomScene r = maker.random_scene();
+    tally.interpenetrating += !interpenetration_segments(r.scene).empty();
+    tally.compare(r, "seed " + std::to_string(seed));
+  }
+  EXPECT_EQ(tally.disagreements, 0) << "of " << tally.points << " points";
+  // The scenes exercise what they are meant to (counts printed for the record).
+  std::cout << tally.points << " points, " << tally.interpenetrating << " of 2000 scenes interpenetrating, "
+            << tally.occluded << " points with occlusion, " << tally.conjunctive << " with conjunctive cones\n";
+  EXPECT_GT(tally.interpenetrating, 200);
+  EXPECT_GT(tally.occluded, 1000);
+}
+
+TEST(VertexTracing, AgreesWithHemisphereOnConjunctiveFamilies) {
+  const char* names[] = {"three_edges", "vertex_behind", "collinear_edges", "coplanar", "vertex_on_edge"};
+  for (int family = 0; family < test::RandomSceneMaker::kConjunctions; ++family) {
+    Tally tally;
+    for (uint64_t seed = 1; seed <= 200; ++seed) {
+      test::RandomSceneMaker maker(1000 * (family + 1) + seed);
+      const auto r = maker.conjunctive_scene(static_cast<test::RandomSceneMaker::Conjunction>(family));
+      tally.compare(r, std::string(names[family]) + " seed " + std::to_string(seed));
+    }
+    EXPECT_EQ(tally.disagreements, 0) << names[family] << ": of " << tally.points << " points";
+    std::cout << names[family] << ": " << tally.points << " points, " << tally.conjunctive << " with conjunctive cones, "
+              << tally.slow_path << " took the slow path\n";
+    // Seen from the origin every family has a conjunctive vertex (unless it is hidden or below
+    // the horizon): most origin points must have traced one.
+    EXPECT_GT(tally.conjunctive, 150) << names[family];
+  }
+}
+
+TEST(VertexTracing, EmitterCullingChangesNothing) {
+  // 001 §4.1: tracing only where an emitter shows must give the general path's value.
+  VertexTracer::Options everything;
+  everything.cull_to_emitters = false;
+  int traced_culled = 0, traced_all = 0;
+  for (uint64_t seed = 1; seed <= 300; ++seed) {
+    test::RandomSceneMaker maker(seed);
+    const test::RandomScene r = maker.random_scene();
+    const VertexTracer tracer(r.scene);
+    for (const auto& site : r.sites) {
+      const VertexTraceResult fast = tracer.gather(site.x, site.n);
+      const VertexTraceResult general = tracer.gather(site.x, site.n, everything);
+      traced_culled += fast.traced;
+      traced_all += general.traced;
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_NEAR(fast.irradiance[c], general.irradiance[c], 1e-13 * std::max(1.0, std::abs(general.irradiance[c])))
+            << "seed " << seed;
+      }
+    }
+  }
+  EXPECT_LT(traced_culled, traced_all);  // and it does cull
+}
+
+/// Both methods at points on the surfaces of `scene` (every fifth on an edge or at a vertex),
+/// every leaf element of a coarse solution emitting its radiosity (001 §4.2).
+int radiosity_disagreements(const std::string& name, int points) {
+  const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data" / name / "scene.json");
+  SolverSettings settings;
+  settings.patch_size = 0.25;
+  settings.refine_threshold = 0.2;
+  settings.refine_passes = 1;
+  settings.unshot_fraction = 1e-2;
+  const Solution solution = solve(RayCaster(scene), settings);
+  const auto faces = faces_from_solution(scene, solution);
+  EXPECT_GT(faces.size(), 50u);
+  const VertexTracer tracer(scene, faces);
+  const HemisphereGatherer hemisphere(scene, faces);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  int disagreements = 0;
+  for (int i = 0; i < points; ++i) {
+    const Polygon& p = scene.polygons[static_cast<size_t>(u(rng) * scene.polygons.size())];
+    const double a = i % 5 == 0 ? std::round(u(rng)) : u(rng), b = i % 5 == 0 ? 0.0 : u(rng) * (1 - a);
+    const Vec3 x = p.vertices[0] + a * (p.vertices[1] - p.vertices[0]) + b * (p.vertices[2] - p.vertices[0]);
+    const auto result = agree(tracer.gather(x, p.normal).irradiance, hemisphere.gather(x, p.normal).irradiance);
+    if (!result && ++disagreements <= 5) ADD_FAILURE() << name << " at " << x.transpose() << ": " << result.message();
+  }
+  return disagreements;
+}
+
+TEST(VertexTracing, AgreesWithHemisphereInRadiosityEnvironments) {
+  EXPECT_EQ(radiosity_disagreements("closed-cube", 60), 0);
+  EXPECT_EQ(radiosity_disagreements("light-over-floor", 60), 0);
+}
+
+TEST(VertexTracing, RegressionVertexOnTheTangentPlane) {
+  // A polygon vertex exactly in the receiver's tangent plane: its two horizon-clip points fall
+  // in one cone and the edges leaving it are parallel in the image but different planes. Was
+  // -0.0388 for 0.1054 when boundaries were ordered by direction alone.
+  SceneBuilder b;
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+  b.polygon({{1, 0, 0}, {0.99, -1, 0}, {0.98, -1, 1}}, lamp);
+  const Vec3 x(0.6, 0, 0.4), n(0, -1, 0);
+  EXPECT_TRUE(agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance));
+}
+
+TEST(VertexTracing, RegressionTwistedWallFromTheCeiling) {
+  // The Cornell box's split left wall seen from the ceiling: both triangles touch the tangent
+  // plane. Nearly parallel features through one cone merged it with a far crossing (-0.022
+  // for 0.239); merges now only take candidates near the cone.
+  SceneBuilder b;
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+  b.polygon({{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}}, lamp);
+  b.polygon({{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}, lamp);
+  const Vec3 x(338.84, 548.8, 234.899), n(0, -1, 0);
+  EXPECT_TRUE(agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance));
+}
+
+// OPEN (issue 5): found by all-polygons-emitting probes of the Cornell box (7 of 200 surface
+// points disagree, all on the ceiling or back wall): several polygons touch the receiver's
+// tangent plane at once. Kept here, minimised, until it is fixed.
+TEST(VertexTracing, DISABLED_OpenCornellRightWallAndTwistedWallFromTheCeiling) {
+  SceneBuilder b;
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+  b.polygon({{0, 0, 559.2}, {0, 0, 0}, {0, 548.8, 0}, {0, 548.8, 559.2}}, lamp);
+  b.polygon({{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}}, lamp);
+  b.polygon({{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}, lamp);
+  const Vec3 x(526.95159062917264, 548.79999999999995, 75.676727710292852), n(0, -1, 0);
+  EXPECT_TRUE(agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance));
+}
+
+TEST(VertexTracing, DegenerateClasses) {
+  SceneBuilder b;
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+  const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
+  b.rectangle(-1, 1, -1, 1, 1, true, lamp);
+  b.rectangle(0, 0.5, 0, 0.5, 0.5, true, grey);              // x below one of its corners
+  b.polygon({{0.2, -0.6, 0.3}, {0.2, -0.2, 0.3}, {0.2, -0.4, 0.9}}, grey);  // in a plane through (0.2, y, z)
+  b.rectangle(-0.3, -0.3 + 1e-7, 0.1, 0.1 + 1e-7, 0.6, true, grey);  // tiny
+  b.polygon({{-1e3, -1e3, 1.5}, {1e3, -1e3, 1.5}, {1e3, 1e3, 1.5}}, grey);  // huge, behind the lamp
+  b.rectangle(-2, 2, -2, 2, 0, false, grey);                 // the receiver's own floor
+  const HemisphereGatherer hemisphere(b.scene());
+  const VertexTracer tracer(b.scene());
+  for (const Vec3& x : {Vec3(0, 0, 0), Vec3(0.2, -0.4, 0), Vec3(0.5, 0.5, 0), Vec3(-1, 0, 0), Vec3(0.2, -0.4, 0.3)}) {
+    EXPECT_TRUE(agree(tracer.gather(x, Vec3::UnitZ()).irradiance, hemisphere.gather(x, Vec3::UnitZ()).irradiance))
+        << x.transpose();
+  }
+  // Seen edge-on from a point in the blocker's plane (x = 0.2), and from a point on a lamp edge.
+  const Vec3 side(1, 0, 0);
+  EXPECT_TRUE(agree(tracer.gather(Vec3(0.2, -0.4, 0.5), side).irradiance, hemisphere.gather(Vec3(0.2, -0.4, 0.5), side).irradiance));
+  EXPECT_TRUE(agree(tracer.gather(Vec3(1, 0, 1), -side).irradiance, hemisphere.gather(Vec3(1, 0, 1), -side).irradiance));
+}
+
+}  // namespace
+}  // namespace rad
