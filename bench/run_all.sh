@@ -56,14 +56,17 @@ table=$("$build/bench/solve_bench")
 } > "$out/solve.md"
 echo "wrote $out/solve.md" >&2
 
-# Exact hemisphere gather (Cornell box meshed into ~1k, 3k, 10k patches, all emitting)
+# The two exact gatherers (Cornell box meshed into ~1k, 3k, 10k patches, all emitting; and the
+# 1000-thin-triangle stress scene of paper 001 Fig. 7b)
 table=$("$build/bench/hemisphere_bench" 40)
 {
-  echo "# Exact hemisphere gather on the Cornell box"
+  echo "# The exact gatherers: hemisphere projection and vertex tracing"
   echo
   echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/hemisphere_bench 40\`): irradiance at 40 seeded"
   echo "points on the floor, back wall, right wall and ceiling, with the box's polygons cut into patches"
-  echo "(as \`radiosity solve\` cuts them) and every patch emitting, every polygon occluding."
+  echo "(as \`radiosity solve\` cuts them), every patch a face of its polygon emitting 1 and every polygon"
+  echo "occluding; both methods see the same faces. Then 10 floor points under 1000 thin triangles and a"
+  echo "crescent-shaped source (direct light only)."
   machine
   echo
   echo "$table"

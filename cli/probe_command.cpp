@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/common.h"
@@ -33,9 +34,14 @@ void run_probe(const ProbeOptions& o) {
   const Scene scene = load_scene_reporting(o.scene);
   const std::vector<ProbePoint> points = read_points_csv(o.points);
   // Both exact methods see the same faces (the polygons, concave ones as triangles).
-  const bool vertex = o.method == "vertex";
-  const HemisphereGatherer hemisphere(scene);
-  const VertexTracer tracer(scene);
+  // Only the chosen one is built (vertex tracing precomputes interpenetrations).
+  std::optional<HemisphereGatherer> hemisphere;
+  std::optional<VertexTracer> tracer;
+  if (o.method == "vertex") {
+    tracer.emplace(scene);
+  } else {
+    hemisphere.emplace(scene);
+  }
 
   std::vector<Rgb> irradiance(points.size());
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
@@ -44,8 +50,8 @@ void run_probe(const ProbeOptions& o) {
   // Each point is independent and written to its own slot: output order and values do not
   // depend on the thread count.
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-    irradiance[i] = vertex ? tracer.gather(points[i].x, points[i].n).irradiance
-                           : hemisphere.gather(points[i].x, points[i].n).irradiance;
+    irradiance[i] = tracer ? tracer->gather(points[i].x, points[i].n).irradiance
+                           : hemisphere->gather(points[i].x, points[i].n).irradiance;
     const size_t finished = ++done;
     if (finished % 256 == 0) bar.update(static_cast<double>(finished) / points.size(), std::to_string(finished) + " points");
   });

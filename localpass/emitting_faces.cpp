@@ -29,10 +29,8 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
 /// Makes the face counter-clockwise about `normal` (triangulation and element corners may come
 /// either way round); edge flags follow their edges.
 void orient(EmittingFace& face, const Vec3& normal) {
-  Vec3 newell = Vec3::Zero();
+  if (newell_vector(face.vertices).dot(normal) >= 0) return;
   const size_t n = face.vertices.size();
-  for (size_t i = 0; i < n; ++i) newell += face.vertices[i].cross(face.vertices[(i + 1) % n]);
-  if (newell.dot(normal) >= 0) return;
   std::reverse(face.vertices.begin(), face.vertices.end());
   // Reversed edge j joins old vertices n-1-j and n-2-j: it is old edge n-2-j (mod n).
   std::vector<bool> flags(n);

@@ -1,9 +1,9 @@
 #include "localpass/vertex_tracing.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <unordered_map>

@@ -57,14 +57,17 @@ TEST(VertexTracing, BlockerOverLight) {
 /// Compares both methods at every site of a scene; counts what the tracer met.
 struct Tally {
   int points = 0, disagreements = 0, conjunctive = 0, slow_path = 0, interpenetrating = 0, occluded = 0;
+  int first_site_conjunctive = 0;  ///< Scenes whose first site traced a conjunctive cone
   void compare(const test::RandomScene& r, const std::string& label) {
     const VertexTracer tracer(r.scene);
     const HemisphereGatherer hemisphere(r.scene);
     for (const auto& site : r.sites) {
+      const bool first = &site == &r.sites.front();
       ++points;
       const VertexTraceResult v = tracer.gather(site.x, site.n);
       const GatherResult h = hemisphere.gather(site.x, site.n, true);
       conjunctive += v.conjunctive > 0;
+      first_site_conjunctive += first && v.conjunctive > 0;
       slow_path += v.slow_path > 0;
       // Occluded: some polygon shows in more than one fragment or not whole (cheap proxy: a
       // fragment count above the polygon count).
@@ -103,9 +106,11 @@ TEST(VertexTracing, AgreesWithHemisphereOnConjunctiveFamilies) {
     EXPECT_EQ(tally.disagreements, 0) << names[family] << ": of " << tally.points << " points";
     std::cout << names[family] << ": " << tally.points << " points, " << tally.conjunctive << " with conjunctive cones, "
               << tally.slow_path << " took the slow path\n";
-    // Seen from the origin every family has a conjunctive vertex (unless it is hidden or below
-    // the horizon): most origin points must have traced one.
-    EXPECT_GT(tally.conjunctive, 150) << names[family];
+    // Seen from the origin (the first site) every family has a conjunctive vertex unless it is
+    // hidden or culled (no emitter there); measured 99 (coplanar, whose T-junction is off the
+    // shared direction) to 169 of 200.
+    std::cout << "  from the origin: " << tally.first_site_conjunctive << " of 200\n";
+    EXPECT_GT(tally.first_site_conjunctive, 80) << names[family];
   }
 }
 
@@ -164,40 +169,38 @@ TEST(VertexTracing, AgreesWithHemisphereInRadiosityEnvironments) {
   EXPECT_EQ(radiosity_disagreements("light-over-floor", 60), 0);
 }
 
+/// Both methods on polygons that all emit 1, at x with normal n.
+::testing::AssertionResult methods_agree(const std::vector<std::vector<Vec3>>& polygons, const Vec3& x, const Vec3& n) {
+  SceneBuilder b;
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+  for (const auto& p : polygons) b.polygon(p, lamp);
+  return agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance);
+}
+
 TEST(VertexTracing, RegressionVertexOnTheTangentPlane) {
   // A polygon vertex exactly in the receiver's tangent plane: its two horizon-clip points fall
   // in one cone and the edges leaving it are parallel in the image but different planes. Was
   // -0.0388 for 0.1054 when boundaries were ordered by direction alone.
-  SceneBuilder b;
-  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
-  b.polygon({{1, 0, 0}, {0.99, -1, 0}, {0.98, -1, 1}}, lamp);
-  const Vec3 x(0.6, 0, 0.4), n(0, -1, 0);
-  EXPECT_TRUE(agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance));
+  EXPECT_TRUE(methods_agree({{{1, 0, 0}, {0.99, -1, 0}, {0.98, -1, 1}}}, Vec3(0.6, 0, 0.4), Vec3(0, -1, 0)));
 }
 
 TEST(VertexTracing, RegressionTwistedWallFromTheCeiling) {
   // The Cornell box's split left wall seen from the ceiling: both triangles touch the tangent
   // plane. Nearly parallel features through one cone merged it with a far crossing (-0.022
   // for 0.239); merges now only take candidates near the cone.
-  SceneBuilder b;
-  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
-  b.polygon({{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}}, lamp);
-  b.polygon({{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}, lamp);
-  const Vec3 x(338.84, 548.8, 234.899), n(0, -1, 0);
-  EXPECT_TRUE(agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance));
+  EXPECT_TRUE(methods_agree({{{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}},
+                             {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}},
+                            Vec3(338.84, 548.8, 234.899), Vec3(0, -1, 0)));
 }
 
 // OPEN (issue 5): found by all-polygons-emitting probes of the Cornell box (7 of 200 surface
 // points disagree, all on the ceiling or back wall): several polygons touch the receiver's
 // tangent plane at once. Kept here, minimised, until it is fixed.
 TEST(VertexTracing, DISABLED_OpenCornellRightWallAndTwistedWallFromTheCeiling) {
-  SceneBuilder b;
-  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
-  b.polygon({{0, 0, 559.2}, {0, 0, 0}, {0, 548.8, 0}, {0, 548.8, 559.2}}, lamp);
-  b.polygon({{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}}, lamp);
-  b.polygon({{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}, lamp);
-  const Vec3 x(526.95159062917264, 548.79999999999995, 75.676727710292852), n(0, -1, 0);
-  EXPECT_TRUE(agree(VertexTracer(b.scene()).gather(x, n).irradiance, HemisphereGatherer(b.scene()).gather(x, n).irradiance));
+  EXPECT_TRUE(methods_agree({{{0, 0, 559.2}, {0, 0, 0}, {0, 548.8, 0}, {0, 548.8, 559.2}},
+                             {{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}},
+                             {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}},
+                            Vec3(526.95159062917264, 548.79999999999995, 75.676727710292852), Vec3(0, -1, 0)));
 }
 
 TEST(VertexTracing, DegenerateClasses) {
