@@ -27,20 +27,35 @@ struct Boundary {
 };
 
 
-/// The equal-depth plane of two polygons, or zero when they are coplanar.
+/// The equal-depth plane of two polygons (unit), or zero when they are coplanar.
 Vec3 equal_depth_plane(const SpanEntry& a, const SpanEntry& b) {
   const Vec3 m = a.offset * b.normal - b.offset * a.normal;
-  return m.norm() > 1e-12 * (std::abs(a.offset) + std::abs(b.offset)) ? m : Vec3::Zero();
+  const double length = m.norm();
+  return length > 1e-12 * (std::abs(a.offset) + std::abs(b.offset)) ? Vec3(m / length) : Vec3::Zero();
 }
 
-/// Whether a is nearer than b in the sector around image direction w from q.
-bool nearer(const SpanEntry& a, const SpanEntry& b, const Vec3& d, const Vec2& q, const Vec2& w, double radius) {
+/// k . (q, 1): where q lies relative to the image line of plane k (times |k_xy|), zero when
+/// within its rounding (a line through q up to rounding is taken through q).
+double line_value(const Vec3& k, const Vec2& q) {
+  const double f = k.x() * q.x() + k.y() * q.y() + k.z();
+  const double rounding = 8e-16 * (std::abs(k.x() * q.x()) + std::abs(k.y() * q.y()) + std::abs(k.z()));
+  return std::abs(f) <= rounding ? 0.0 : f;
+}
+
+/// Whether a is nearer than b in the sector whose middle meets the circle of radius `circle`
+/// around q in image direction w.
+bool nearer(const SpanEntry& a, const SpanEntry& b, const Vec3& d, const Vec2& q, const Vec2& w, double radius,
+            double circle) {
   const Vec3 m = equal_depth_plane(a, b);
   if (m == Vec3::Zero()) return a.order < b.order;  // equally deep everywhere
   // Depth t = c / (n . d') > 0, so sign(n . d') = sign(c): a is nearer where
-  // sign(c_a c_b) (m . d') < 0 (multiply t_a < t_b by (n_a . d')(n_b . d')).
+  // sign(c_a c_b) (m . d') < 0 (multiply t_a < t_b by (n_a . d')(n_b . d')). Where they meet in
+  // the cone, the side is taken at the sector's point on the circle, where the boundaries were
+  // ordered: the line of m need not pass through q.
   const double sign = (a.offset > 0) == (b.offset > 0) ? 1.0 : -1.0;
-  if (relative_line_distance(m, q) < radius) return sign * (m.x() * w.x() + m.y() * w.y()) < 0;  // they meet here
+  if (relative_line_distance(m, q) < radius) {
+    return sign * (line_value(m, q) + circle * (m.x() * w.x() + m.y() * w.y())) < 0;
+  }
   return a.offset / a.normal.dot(d) < b.offset / b.normal.dot(d);
 }
 
@@ -58,16 +73,12 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
   // A boundary is ordered by where it crosses a circle around q somewhat wider than the cone,
   // not by its direction alone: a line snapped from within the cone may pass beside q, and two
   // such lines can share a direction yet be different planes with different G (a vertex on the
-  // receiver's tangent plane: its two horizon-clip points fall in one cone, and the edges
-  // leaving it are parallel in the image, an O(1) apart at ~1e12). A line through q up to
-  // rounding is taken through q.
+  // receiver's tangent plane: its two cut points on the image square fall in one cone, and the
+  // edges leaving it are nearly parallel in the image).
   const double circle = 2 * radius * (1 + q.norm());
   const auto angle_of = [&](const Vec3& k, double sense) {
     const Vec2 w = sense * Vec2(k.y(), -k.x());
-    const double along = k.head<2>().squaredNorm();
-    const double f = k.x() * q.x() + k.y() * q.y() + k.z();
-    const double rounding = 8e-16 * (std::abs(k.x() * q.x()) + std::abs(k.y() * q.y()) + std::abs(k.z()));
-    const Vec2 offset = std::abs(f) <= rounding ? Vec2::Zero() : Vec2(-f * k.head<2>() / along);
+    const Vec2 offset = -line_value(k, q) * k.head<2>() / k.head<2>().squaredNorm();
     const Vec2 exit = offset + std::sqrt(std::max(circle * circle - offset.squaredNorm(), 0.0)) * w.normalized();
     return std::atan2(exit.y(), exit.x());
   };
@@ -92,8 +103,8 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
     for (size_t j = i + 1; j < entries.size(); ++j) {
       const Vec3 m = equal_depth_plane(entries[i], entries[j]);
       if (m == Vec3::Zero() || !(relative_line_distance(m, q) < radius)) continue;
-      boundaries.push_back({angle_of(m.normalized(), 1), m.normalized()});
-      boundaries.push_back({angle_of(m.normalized(), -1), m.normalized()});
+      boundaries.push_back({angle_of(m, 1), m});
+      boundaries.push_back({angle_of(m, -1), m});
     }
   }
   if (boundaries.empty()) return Rgb::Zero();
@@ -113,7 +124,7 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
     int front = -1;
     for (size_t i = 0; i < entries.size(); ++i) {
       if (!(ccw_angle(start[i], mid) < width[i])) continue;
-      if (front < 0 || nearer(entries[i], entries[front], d, q, w, radius)) front = static_cast<int>(i);
+      if (front < 0 || nearer(entries[i], entries[front], d, q, w, radius, circle)) front = static_cast<int>(i);
     }
     if (front >= 0) seen[b] = entries[front].exitance;
   }

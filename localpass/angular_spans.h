@@ -8,7 +8,7 @@
 /// Everything is in the image plane one unit above x (x at the origin, receiver normal +z): the
 /// vertex is q = (d_x / d_z, d_y / d_z). A boundary is the line of a plane k through x (unit
 /// normal, from the feature's 3D endpoints); its image direction is (k_y, -k_x) (the image of
-/// the tangent k x d), exact even where q is ~1e12 from the origin next to the horizon clip.
+/// the tangent k x d), exact even where q is ~1e8 from the origin at the image square.
 /// G takes k itself, not a line re-fitted through q: q's rounding there (~1e-4 absolute) would
 /// move the line's offset by as much. Sectors run counter-clockwise; the branch cut at pi is
 /// handled by sorting on the circle.

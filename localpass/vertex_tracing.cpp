@@ -1,6 +1,7 @@
 #include "localpass/vertex_tracing.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -46,7 +47,7 @@ ImageBox padded_box(const std::vector<Vec2>& points, double radius) {
 }
 
 /// A face as seen from x: local coordinates (x at the origin, receiver normal +z), clipped at
-/// the horizon height, as a loop whose interior is on the k . d >= 0 side of every edge plane.
+/// the image square, as a loop whose interior is on the k . d >= 0 side of every edge plane.
 struct LocalFace {
   int face = -1;
   Vec3 normal;
@@ -55,15 +56,17 @@ struct LocalFace {
   std::vector<Vec3> dirs;        ///< Unit vertex directions...
   std::vector<Vec2> image;       ///< ...and their images q = (d_x, d_y) / d_z.
   std::vector<Vec3> k;           ///< Edge i (dirs i -> i+1): unit normal of its plane through x (0: degenerate).
-  std::vector<char> silhouette;  ///< Edge i lies on its polygon's boundary or on the horizon.
+  std::vector<char> silhouette;  ///< Edge flag: 0 inside the polygon, else a silhouette (see kCutBySquare).
   int first_feature = 0;         ///< Edge i is feature first_feature + i.
   int first_vertex = 0;          ///< Vertex i is candidate vertex_candidate[first_vertex + i].
   ImageBox box;
 };
 
-/// An edge or an intersection segment: a great-circle arc a -> b of plane k (unit, a x b).
+/// An edge or an intersection segment: a great-circle arc a -> b of plane k (unit, a x b),
+/// whose image is the segment qa -> qb.
 struct Feature {
   Vec3 a, b, k;
+  Vec2 qa, qb;
   int polygon = -1;  ///< -1 for intersection segments (they may cross anything)
   bool silhouette = false;
 };
@@ -71,30 +74,62 @@ struct Feature {
 struct Candidate {
   Vec3 d;
   Vec2 q;
-  bool intrinsic;  ///< A vertex (polygon vertex, horizon vertex or intersection end)
+  bool intrinsic;  ///< A vertex (polygon vertex, cut by the square, or intersection end)
 };
 
-/// Clips a convex loop with per-edge flags to z >= h (Sutherland-Hodgman); the new edge along
-/// the cut is flagged as a silhouette (the horizon ends the face there).
-void clip_to_height(std::vector<Vec3>& loop, std::vector<char>& flags, double h) {
+/// Half side of the square the image is clipped to (001 §3.1: "clip against a large bounding
+/// square on the image plane"). What lies outside has a projected solid angle below
+/// pi / (1 + L^2), an irradiance error below 1e-16 of the largest exitance. Clipping at a small
+/// height above the tangent plane instead cuts every face along its own line (a near face at
+/// 1/100 of the height's image distance of a far one), so far faces show through a band under
+/// near ones that reach the tangent plane; the band's vertex terms are O(1) each, and they fail
+/// to cancel. The square's four planes pass through x and are shared by every face: a face
+/// that hides another up to the horizon hides it up to the square.
+constexpr double kImageBound = 1e8;
+
+/// The square's planes through x: k . p >= 0 keeps |u| <= L z, |v| <= L z (and so z > 0).
+const std::array<Vec3, 4>& square_planes() {
+  static const std::array<Vec3, 4> planes = {Vec3(-1, 0, kImageBound), Vec3(1, 0, kImageBound),
+                                             Vec3(0, -1, kImageBound), Vec3(0, 1, kImageBound)};
+  return planes;
+}
+
+/// Edge flags: 0 inside the polygon, 1 on its boundary, kCutBySquare + i along square plane i
+/// (nonzero: a silhouette, the face ends there).
+constexpr char kCutBySquare = 2;
+
+/// Where segment p -> q crosses the plane k . d = 0 through x (k . p and k . q of opposite
+/// signs). Interpolating would give the point's height as a difference of two large numbers,
+/// its image off by ~1e-8 relative at the square; the crossing of the two planes through x,
+/// (p x q) x k, lies on the plane exactly, and the interpolation only sets its length.
+Vec3 cut_point(const Vec3& p, const Vec3& q, const Vec3& k) {
+  const double sp = k.dot(p), sq = k.dot(q);
+  const Vec3 rough = (sp * q - sq * p) / (sp - sq);
+  Vec3 c = p.cross(q).cross(k);
+  const double length = c.norm();
+  if (!(length > 0)) return rough;
+  c *= rough.norm() / length;
+  return c.dot(rough) >= 0 ? c : Vec3(-c);
+}
+
+/// Clips a convex loop with per-edge flags to k . p >= 0 (Sutherland-Hodgman); the new edge
+/// along the cut gets `cut_flag`.
+void clip_to_plane(std::vector<Vec3>& loop, std::vector<char>& flags, const Vec3& k, char cut_flag) {
   std::vector<Vec3> out;
   std::vector<char> out_flags;
   const size_t n = loop.size();
   for (size_t i = 0; i < n; ++i) {
     const Vec3& p = loop[i];
     const Vec3& q = loop[(i + 1) % n];
-    const bool p_in = p.z() >= h, q_in = q.z() >= h;
-    const auto cut = [&] {
-      Vec3 c = p + (h - p.z()) / (q.z() - p.z()) * (q - p);
-      c.z() = h;
-      return c;
-    };
+    const double sp = k.dot(p), sq = k.dot(q);
+    const bool p_in = sp >= 0, q_in = sq >= 0;
+    const auto cut = [&] { return cut_point(p, q, k); };
     if (p_in) {
       out.push_back(p);
       out_flags.push_back(flags[i]);
       if (!q_in) {
         out.push_back(cut());
-        out_flags.push_back(1);
+        out_flags.push_back(cut_flag);
       }
     } else if (q_in) {
       out.push_back(cut());
@@ -105,6 +140,25 @@ void clip_to_height(std::vector<Vec3>& loop, std::vector<char>& flags, double h)
   flags = std::move(out_flags);
 }
 
+/// Distance from image point q to the image segment a -> b, relative to 1 + |q| (as
+/// relative_distance). Measured in the image, the metric the cones and clusters use, and not by
+/// the edge's plane alone: a very short edge has a plane known only roughly, and its badly
+/// conditioned crossings land far beyond its ends while still "on" its plane; an angular end
+/// test lets them through, since near the horizon a relative image distance of 1e-10 is an
+/// angle far below double precision. Measured from the nearer end, so that a long edge reaching
+/// from near the zenith to the square keeps its precision at the near end.
+double relative_segment_distance(const Vec2& a, const Vec2& b, const Vec2& q) {
+  const Vec2 ab = b - a;
+  const double length = ab.norm();
+  if (!(length > 0)) return relative_distance(q, a);
+  const Vec2 u = ab / length;
+  const bool from_a = (q - a).dot(u) < 0.5 * length;
+  const Vec2 r = q - (from_a ? a : b);
+  const double along = r.dot(u);
+  if (from_a ? along < 0 : along > 0) return r.norm() / (1 + q.norm());
+  return (r - along * u).norm() / (1 + q.norm());
+}
+
 /// Where the arcs of p and q cross, if they do (ends included within the nape angle, so that a
 /// crossing at a vertex is found and then merged with it).
 bool arcs_cross(const Feature& p, const Feature& q, Vec3* where) {
@@ -112,10 +166,11 @@ bool arcs_cross(const Feature& p, const Feature& q, Vec3* where) {
   const double len = c.norm();
   if (!(len > 1e-14)) return false;  // the same great circle (collinear edges meet at their ends)
   c /= len;
-  if (c.dot(p.a + p.b) < 0) c = -c;
-  if (c.dot(q.a + q.b) <= 0) return false;
-  for (const Feature* f : {&p, &q}) {
-    if (f->a.cross(c).dot(f->k) < -kNape || c.cross(f->b).dot(f->k) < -kNape) return false;
+  if (c.z() < 0) c = -c;
+  if (!(c.z() > 0)) return false;  // on the horizon's great circle: outside the square
+  const Vec2 image = image_of(c);
+  if (!(relative_segment_distance(p.qa, p.qb, image) < kNape && relative_segment_distance(q.qa, q.qb, image) < kNape)) {
+    return false;
   }
   *where = c;
   return true;
@@ -200,7 +255,7 @@ void classify(const LocalFace& f, const Vec3& d, const Vec2& q, double radius, s
     if (f.k[i] == Vec3::Zero()) continue;
     if (f.k[i].dot(d) <= 0) inside = false;
     const double distance = relative_line_distance(f.k[i], q);
-    if (distance < best_distance && f.dirs[i].cross(d).dot(f.k[i]) >= 0 && d.cross(f.dirs[next(i)]).dot(f.k[i]) >= 0) {
+    if (distance < best_distance && relative_segment_distance(f.image[i], f.image[next(i)], q) < radius) {
       best_distance = distance;
       best = i;
     }
@@ -235,18 +290,15 @@ VertexTracer::VertexTracer(const Scene& scene, std::vector<EmittingFace> faces)
   for (const auto& [a, b] : interpenetration_segments(scene)) intersections_.push_back({a, b});
   const double diagonal = scene.bounds().diagonal();
   in_plane_ = 1e-12 * diagonal;
-  horizon_ = kStarkHorizon * diagonal;
 }
 
 VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Options& options) const {
   VertexTraceResult result;
   const PlaneFrame frame(Vec3::Zero(), n);
-  const auto local = [&](const Vec3& p) {
-    const Vec3 r = p - x;
-    return Vec3(frame.u.dot(r), frame.v.dot(r), n.dot(r));
-  };
+  const auto rotate = [&](const Vec3& r) { return Vec3(frame.u.dot(r), frame.v.dot(r), n.dot(r)); };
+  const auto local = [&](const Vec3& p) { return rotate(p - x); };
 
-  // 1. The faces above the horizon, in local coordinates.
+  // 1. The faces inside the image square (above the horizon), in local coordinates.
   std::vector<LocalFace> faces;
   ImageBox emitters;
   for (size_t i = 0; i < faces_.size(); ++i) {
@@ -265,11 +317,15 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
       for (size_t j = 0; j < m; ++j) reversed[j] = flags[(2 * m - 2 - j) % m];
       flags = std::move(reversed);
     }
-    clip_to_height(loop, flags, horizon_);
-    // Drop repeated points (a clip exactly through a vertex).
+    for (size_t c = 0; c < 4 && loop.size() >= 3; ++c) {
+      clip_to_plane(loop, flags, square_planes()[c], static_cast<char>(kCutBySquare + c));
+    }
+    // Drop repeated points (a clip exactly through a vertex): of p_j = p_j+1, p_j+1 goes with
+    // the degenerate edge j, so edge j+1 keeps its flag; at the wrap, p_j itself goes.
     for (size_t j = 0; j < loop.size() && loop.size() >= 3;) {
-      if ((loop[j] - loop[(j + 1) % loop.size()]).norm() <= 1e-15 * loop[j].norm()) {
-        loop.erase(loop.begin() + static_cast<long>((j + 1) % loop.size()));
+      const size_t next = (j + 1) % loop.size();
+      if ((loop[j] - loop[next]).norm() <= 1e-15 * loop[j].norm()) {
+        loop.erase(loop.begin() + static_cast<long>(next == 0 ? j : next));
         flags.erase(flags.begin() + static_cast<long>(j));
       } else {
         ++j;
@@ -278,7 +334,7 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
     if (loop.size() < 3) continue;
     LocalFace lf;
     lf.face = static_cast<int>(i);
-    lf.normal = local(x + polygon.normal);
+    lf.normal = rotate(polygon.normal);
     lf.offset = offset;
     // The receiver sees the front when it lies in front of the plane (offset < 0).
     lf.exitance = offset < 0 ? face.exitance : Rgb::Zero();
@@ -286,7 +342,13 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
     for (size_t j = 0; j < m; ++j) {
       lf.dirs.push_back(loop[j].normalized());
       lf.image.push_back(image_of(loop[j]));
-      const Vec3 k = loop[j].cross(loop[(j + 1) % m]);
+      Vec3 k = loop[j].cross(loop[(j + 1) % m]);
+      if (flags[j] >= kCutBySquare && k.norm() > 0) {
+        // Along the square the plane is known exactly; from two cut points close together it
+        // would not be (their crossings with other edges would land far off).
+        const Vec3& exact = square_planes()[flags[j] - kCutBySquare];
+        k = exact.dot(k) >= 0 ? exact : Vec3(-exact);
+      }
       lf.k.push_back(k.norm() > 0 ? Vec3(k.normalized()) : Vec3::Zero());
     }
     lf.silhouette = std::move(flags);
@@ -301,29 +363,36 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
   }
   std::erase_if(faces, [&](const LocalFace& f) { return !f.box.intersects(region); });
 
-  // 2. Features: face edges, then intersection segments above the horizon.
+  // 2. Features: face edges, then intersection segments inside the square.
   std::vector<Feature> features;
   std::vector<ImageBox> feature_boxes;
   for (LocalFace& f : faces) {
     f.first_feature = static_cast<int>(features.size());
     const size_t m = f.dirs.size();
     for (size_t j = 0; j < m; ++j) {
-      features.push_back({f.dirs[j], f.dirs[(j + 1) % m], f.k[j], faces_[f.face].polygon, f.silhouette[j] != 0});
+      features.push_back({f.dirs[j], f.dirs[(j + 1) % m], f.k[j], f.image[j], f.image[(j + 1) % m],
+                          faces_[f.face].polygon, f.silhouette[j] != 0});
       feature_boxes.push_back(padded_box({f.image[j], f.image[(j + 1) % m]}, kNape));
     }
   }
   std::vector<Candidate> candidates;
   for (const Segment& s : intersections_) {
     Vec3 a = local(s.a), b = local(s.b);
-    if (a.z() < horizon_ && b.z() < horizon_) continue;
-    if (a.z() < horizon_) a += (horizon_ - a.z()) / (b.z() - a.z()) * (b - a);
-    if (b.z() < horizon_) b += (horizon_ - b.z()) / (a.z() - b.z()) * (a - b);
+    bool inside = true;
+    for (const Vec3& plane : square_planes()) {
+      const double sa = plane.dot(a), sb = plane.dot(b);
+      if (sa < 0 && sb < 0) inside = false;
+      if (!inside) break;
+      if (sa < 0) a = cut_point(a, b, plane);
+      if (sb < 0) b = cut_point(a, b, plane);
+    }
+    if (!inside) continue;
     const Vec3 k = a.cross(b);
     if (!(k.norm() > 0)) continue;
     const Vec3 da = a.normalized(), db = b.normalized();
     const ImageBox box = padded_box({image_of(a), image_of(b)}, kNape);
     if (!box.intersects(region)) continue;
-    features.push_back({da, db, k.normalized(), -1, true});
+    features.push_back({da, db, k.normalized(), image_of(a), image_of(b), -1, true});
     feature_boxes.push_back(box);
     candidates.push_back({da, image_of(a), true});
     candidates.push_back({db, image_of(b), true});

@@ -3,7 +3,8 @@
 /// irradiance at x is a sum over the vertices of the visible map seen from x (intrinsic polygon
 /// vertices, apparent crossings of edges, and, for interpenetrating polygons, the ends and
 /// crossings of their intersection lines), each contributing through its angular spans
-/// (localpass/angular_spans.h). No polygon is clipped against another; only the horizon clip.
+/// (localpass/angular_spans.h). No polygon is clipped against another; only against the image square
+/// (the horizon).
 #include <vector>
 
 #include "localpass/emitting_faces.h"
@@ -52,7 +53,6 @@ class VertexTracer {
   std::vector<EmittingFace> faces_;
   std::vector<Segment> intersections_;  ///< Where polygons interpenetrate (view-independent)
   double in_plane_ = 0;                 ///< |plane offset| below this: x is in the face's plane
-  double horizon_ = 0;                  ///< Height of the horizon clip above x's tangent plane
 };
 
 }  // namespace rad
