@@ -29,7 +29,9 @@ demo: build
 	$(RADIOSITY) solve data/cornell-box/scene.json -o $(DEMO_OUT)/solution.vtp
 	$(RADIOSITY) render data/cornell-box/scene.json --method patches --solution $(DEMO_OUT)/solution.vtp \
 	  -o $(DEMO_OUT)/patches.exr
-	@echo "demo: in $(DEMO_OUT)/: solution.vtp (open in ParaView), patches.exr/.png, albedo, facing"
+	$(RADIOSITY) render data/cornell-box/scene.json --method hemisphere --solution $(DEMO_OUT)/solution.vtp \
+	  --width 64 --height 64 -o $(DEMO_OUT)/local-pass.exr
+	@echo "demo: in $(DEMO_OUT)/: solution.vtp (open in ParaView), local-pass.exr/.png/.stats.json (the exact local pass at the default tolerance), patches.exr/.png, albedo, facing"
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)

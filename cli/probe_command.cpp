@@ -1,21 +1,27 @@
-// `radiosity probe SCENE --points P.csv [--method hemisphere|vertex] [-o OUT.csv]`: exact irradiance
-// at given points, direct lighting only (polygons radiate their emission, all occlude).
+// `radiosity probe SCENE --points P.csv [--solution S.vtp [--tolerance T]] [--method hemisphere|vertex]
+// [-o OUT.csv]`: exact irradiance at given points: direct lighting only (polygons radiate their
+// emission, all occlude), or from a solution through the error-bounded local pass.
 #include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "localpass/hemisphere_gather.h"
+#include "localpass/local_pass.h"
+#include "localpass/monte_carlo.h"
 #include "localpass/vertex_tracing.h"
 #include "scene/error.h"
 #include "viz/atomic_file.h"
 #include "viz/points_csv.h"
+#include "viz/solution_io.h"
 
 namespace rad::cli {
 namespace {
@@ -24,6 +30,9 @@ struct ProbeOptions {
   std::string scene;
   std::string points;
   std::string method = "hemisphere";
+  std::string solution;  ///< empty: direct lighting only
+  double tolerance = 0;
+  int samples = 64;
   std::string output;  ///< empty: stdout
   int threads = 0;
 };
@@ -33,25 +42,53 @@ void run_probe(const ProbeOptions& o) {
   const ThreadLimit limit(o.threads);
   const Scene scene = load_scene_reporting(o.scene);
   const std::vector<ProbePoint> points = read_points_csv(o.points);
-  // Both exact methods see the same faces (the polygons, concave ones as triangles).
-  // Only the chosen one is built (vertex tracing precomputes interpenetrations).
-  std::optional<HemisphereGatherer> hemisphere;
-  std::optional<VertexTracer> tracer;
-  if (o.method == "vertex") {
-    tracer.emplace(scene);
-  } else {
-    hemisphere.emplace(scene);
-  }
-
   std::vector<Rgb> irradiance(points.size());
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
+  std::function<void(size_t)> gather;
+  // Only the chosen method is built (vertex tracing precomputes interpenetrations).
+  std::optional<HemisphereGatherer> hemisphere;
+  std::optional<VertexTracer> tracer;
+  std::optional<LocalPass> pass;
+  std::optional<MonteCarloGatherer> monte_carlo;
+  if (o.method == "montecarlo" && o.solution.empty()) {
+    throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
+  }
+  if (!o.solution.empty()) {
+    const Solution solution = read_solution(o.solution);
+    if (solution.scene_fingerprint != scene.fingerprint()) {
+      throw InputError(o.solution + ": solved for a different scene (" + solution.scene_path + "); solve " +
+                       o.scene + " again");
+    }
+    if (o.method == "montecarlo") {
+      monte_carlo.emplace(scene, faces_from_solution(scene, solution));
+      gather = [&](size_t i) {
+        irradiance[i] = monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
+        bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified
+      };
+    } else {
+      pass.emplace(scene, faces_from_solution(scene, solution),
+                   o.method == "vertex" ? ExactMethod::vertex : ExactMethod::hemisphere);
+      gather = [&](size_t i) {
+        const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
+        irradiance[i] = r.irradiance;
+        bound[i] = r.bound.maxCoeff();
+      };
+    }
+  } else if (o.method == "vertex") {
+    // Both exact methods see the same faces (the polygons, concave ones as triangles).
+    tracer.emplace(scene);
+    gather = [&](size_t i) { irradiance[i] = tracer->gather(points[i].x, points[i].n).irradiance; };
+  } else {
+    hemisphere.emplace(scene);
+    gather = [&](size_t i) { irradiance[i] = hemisphere->gather(points[i].x, points[i].n).irradiance; };
+  }
+
   ProgressBar bar("probe");
   std::atomic<size_t> done{0};
   // Each point is independent and written to its own slot: output order and values do not
   // depend on the thread count.
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-    irradiance[i] = tracer ? tracer->gather(points[i].x, points[i].n).irradiance
-                           : hemisphere->gather(points[i].x, points[i].n).irradiance;
+    gather(i);
     const size_t finished = ++done;
     if (finished % 256 == 0) bar.update(static_cast<double>(finished) / points.size(), std::to_string(finished) + " points");
   });
@@ -69,7 +106,8 @@ void run_probe(const ProbeOptions& o) {
     out.commit();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cerr << "probe: " << points.size() << " points, " << o.method << ", direct only, " << seconds << " s"
+  const std::string what = o.solution.empty() ? "direct only" : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);
+  std::cerr << "probe: " << points.size() << " points, " << o.method << ", " << what << ", " << seconds << " s"
             << (o.output.empty() ? "" : "; wrote " + o.output) << "\n";
 }
 
@@ -78,14 +116,25 @@ void run_probe(const ProbeOptions& o) {
 void add_probe_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<ProbeOptions>();
   CLI::App* sub = app.add_subcommand("probe",
-                                     "Exact irradiance at points (CSV in, CSV out). Direct only: polygons radiate their "
-                                     "emission, every polygon occludes from both sides.");
+                                     "Exact irradiance at points (CSV in, CSV out). Without --solution, direct only: "
+                                     "polygons radiate their emission, every polygon occludes from both sides. With "
+                                     "--solution, every element radiates its radiosity (the local pass).");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   sub->add_option("-p,--points", o->points, "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")->required();
   sub->add_option("-m,--method", o->method,
                   "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing with "
-                  "angular spans (paper 001). Both exact; they agree to 1e-9")
-      ->check(CLI::IsMember({"hemisphere", "vertex"}))
+                  "angular spans (paper 001). Both exact; they agree to 1e-9. montecarlo (with --solution): "
+                  "--samples cosine-weighted rays per point, bound reported as inf")
+      ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo"}))
+      ->capture_default_str();
+  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`: gather from its elements");
+  sub->add_option("-t,--tolerance", o->tolerance,
+                  "With --solution: stop once the certified error bound is at most this fraction of the value "
+                  "(0: exact); the bound column reports it")
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  sub->add_option("--samples", o->samples, "montecarlo: rays per point (rounded up to a square)")
+      ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
   sub->add_option("-o,--output", o->output, "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
   sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));

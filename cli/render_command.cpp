@@ -1,12 +1,22 @@
-// `radiosity render SCENE --method albedo|facing|patches [--solution S.vtp] -o IMAGE.exr`: per-pixel images from the scene camera.
+// `radiosity render SCENE [--solution S.vtp] --method hemisphere|vertex|patches|albedo|facing
+// [--tolerance T] -o IMAGE.exr`: per-pixel images from the scene camera; the exact methods run
+// the error-bounded local pass and write a stats JSON next to the image.
+#include <tbb/task_arena.h>
+
+#include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "localpass/albedo_render.h"
+#include "localpass/local_pass_render.h"
 #include "localpass/patch_render.h"
+#include "viz/atomic_file.h"
 #include "scene/error.h"
 #include "scene/ray_caster.h"
 #include "viz/image_io.h"
@@ -17,8 +27,11 @@ namespace {
 
 struct RenderOptions {
   std::string scene;
-  std::string method = "albedo";
+  std::string method = "hemisphere";
   std::string solution;  ///< .vtp from `solve`, for methods that need one
+  double tolerance = 0.1;
+  int samples = 64;      ///< montecarlo: rays per pixel
+  std::string stats;     ///< JSON path; default: the output with extension .stats.json
   bool no_ambient = false;
   std::string output;
   std::string preview;  ///< PNG path; default: the output with extension .png
@@ -28,10 +41,55 @@ struct RenderOptions {
   int threads = 0;  ///< 0: all cores
 };
 
+/// Per-pixel statistics of a local-pass render, as written to the stats JSON.
+nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& image, int face_count, int leaves,
+                                double seconds) {
+  size_t pixels = 0;
+  double emitting_sum = 0, projected_sum = 0, relative_bound_sum = 0, relative_bound_max = 0, bound_max = 0;
+  int emitting_max = 0, projected_max = 0;
+  for (size_t i = 0; i < image.surface.size(); ++i) {
+    if (!image.surface[i]) continue;
+    ++pixels;
+    emitting_sum += image.emitting[i];
+    projected_sum += image.projected[i];
+    emitting_max = std::max(emitting_max, image.emitting[i]);
+    projected_max = std::max(projected_max, image.projected[i]);
+    const double bound = image.bound.pixels[i].maxCoeff();
+    const double value = image.radiosity.pixels[i].maxCoeff();
+    bound_max = std::max(bound_max, bound);
+    const double relative = value > 0 ? bound / value : 0;
+    relative_bound_sum += relative;
+    relative_bound_max = std::max(relative_bound_max, relative);
+  }
+  const double n = std::max<size_t>(pixels, 1);
+  const double faces = face_count;
+  nlohmann::json out;
+  out["method"] = o.method;
+  if (o.method == "montecarlo") {
+    out["samples"] = o.samples;
+  } else {
+    out["tolerance"] = o.tolerance;
+  }
+  out["width"] = image.radiosity.width;
+  out["height"] = image.radiosity.height;
+  out["seconds"] = seconds;
+  out["threads"] = tbb::this_task_arena::max_concurrency();
+  out["faces"] = face_count;
+  out["octree_leaves"] = leaves;
+  out["pixels_gathered"] = pixels;
+  out["emitting_per_pixel"] = {{"mean", emitting_sum / n}, {"max", emitting_max}};
+  out["emitting_fraction_mean"] = emitting_sum / n / faces;
+  out["projected_per_pixel"] = {{"mean", projected_sum / n}, {"max", projected_max}};
+  out["projected_fraction_mean"] = projected_sum / n / faces;
+  out["bound"] = {{"relative_mean", relative_bound_sum / n}, {"relative_max", relative_bound_max}, {"max", bound_max}};
+  return out;
+}
+
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
-  const bool needs_solution = o.method == "patches";
+  const bool local = o.method == "hemisphere" || o.method == "vertex" || o.method == "montecarlo";
+  const bool needs_solution = local || o.method == "patches";
   if (needs_solution && o.solution.empty()) {
     throw InputError("--method " + o.method + " needs --solution (a .vtp written by `radiosity solve`)");
   }
@@ -43,13 +101,35 @@ void run_render(const RenderOptions& o) {
   const Camera camera(spec);
 
   Image image;
+  nlohmann::json stats;
   if (needs_solution) {
     const Solution solution = read_solution(o.solution);
     if (solution.scene_fingerprint != scene.fingerprint()) {
       throw InputError(o.solution + ": solved for a different scene (" + solution.scene_path +
                        "); solve " + o.scene + " again");
     }
-    image = render_patches(scene, solution, camera, !o.no_ambient);
+    if (local) {
+      const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
+      const RayCaster caster(scene);
+      ProgressBar bar("render");
+      const double total = static_cast<double>(spec.width) * spec.height;
+      const auto progress = [&](size_t done) { bar.update(done / total, std::to_string(done) + " pixels"); };
+      LocalPassImage result;
+      std::optional<LocalPass> pass;
+      if (o.method == "montecarlo") {
+        result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces), o.samples, progress);
+      } else {
+        pass.emplace(scene, faces, o.method == "vertex" ? ExactMethod::vertex : ExactMethod::hemisphere);
+        result = render_local_pass(scene, caster, camera, *pass, o.tolerance, progress);
+      }
+      bar.finish();
+      image = result.radiosity;
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      stats = local_pass_stats(o, result, static_cast<int>(faces.size()),
+                               pass ? static_cast<int>(pass->octree().leaves().size()) : 0, seconds);
+    } else {
+      image = render_patches(scene, solution, camera, !o.no_ambient);
+    }
   } else {
     const RayCaster caster(scene);
     image = o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera);
@@ -63,10 +143,30 @@ void run_render(const RenderOptions& o) {
     write_png_preview(png, image, o.exposure);
     written += ", " + png.string();
   }
+  if (local) {
+    const std::filesystem::path path = o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
+                                                       : std::filesystem::path(o.stats);
+    AtomicFile out(path);
+    {
+      std::ofstream file(out.temp_path());
+      file << stats.dump(2) << "\n";
+      if (!file.flush()) throw Error(path.string() + ": cannot write");
+    }
+    out.commit();
+    written += ", " + path.string();
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cerr << "render: " << o.method << " " << spec.width << "x" << spec.height << " in "
-            << seconds << " s; wrote " << written << "\n";
+  const bool exact = o.method == "hemisphere" || o.method == "vertex";
+  std::cerr << "render: " << o.method
+            << (exact ? " at tolerance " + std::to_string(o.tolerance)
+                      : o.method == "montecarlo" ? " with " + std::to_string(o.samples) + " samples per pixel" : std::string())
+            << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote " << written << "\n";
+  if (exact) {
+    std::cerr << "render: faces gathered exactly per pixel: mean " << stats["emitting_per_pixel"]["mean"].get<double>()
+              << " of " << stats["faces"].get<int>() << "; largest relative bound "
+              << stats["bound"]["relative_max"].get<double>() << "\n";
+  }
 }
 
 }  // namespace
@@ -76,11 +176,24 @@ void add_render_command(CLI::App& app, Run& run) {
   CLI::App* sub = app.add_subcommand("render", "Render an image from the scene camera (OpenEXR + PNG preview).");
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
   sub->add_option("-m,--method", o->method,
+                  "hemisphere | vertex: the error-bounded local pass (004 Fig. 6) with the exact hemisphere "
+                  "gather or vertex tracing, B = E + rho H at the visible point (needs --solution); "
+                  "montecarlo: the same B with H from --samples cosine-weighted rays into the solution (the "
+                  "baseline; needs --solution); "
+                  "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution); "
                   "albedo: primary rays only (reflectance; emitters show their emission); "
-                  "facing: albedo x |cos| to the eye, to see the geometry; "
-                  "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution)")
-      ->check(CLI::IsMember({"albedo", "facing", "patches"}))
+                  "facing: albedo x |cos| to the eye, to see the geometry")
+      ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo", "patches", "albedo", "facing"}))
       ->capture_default_str();
+  sub->add_option("-t,--tolerance", o->tolerance,
+                  "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
+                  "fraction of its value (0: exact, every element gathered)")
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  sub->add_option("--samples", o->samples, "montecarlo: rays per pixel (rounded up to a square)")
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+  sub->add_option("--stats", o->stats, "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
   sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`");
   sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");
   sub->add_option("-o,--output", o->output, "Output image (.exr, linear float RGB)")->required();

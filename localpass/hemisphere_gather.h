@@ -1,5 +1,6 @@
 #pragma once
 /// Exact irradiance at a point by hemisphere projection (paper 004 §3; DESIGN.md §4).
+#include <memory>
 #include <vector>
 
 #include "localpass/emitting_faces.h"
@@ -43,8 +44,42 @@ class HemisphereGatherer {
   /// Cost: O(P log P) to order the P convex pieces, then one BSP insertion per piece above the
   /// horizon (measured in bench/results/hemisphere.md).
   GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments = false) const;
+  /// As gather, with only the faces marked in `emitting` radiating (the others are black) and
+  /// only those marked in `present` projected at all: `present` must hold every face that may
+  /// hide an emitting one from x (the local pass passes what its voxels cannot rule out).
+  /// Both have one entry per face.
+  GatherResult gather(const Vec3& x, const Vec3& n, const std::vector<char>& emitting,
+                      const std::vector<char>& present) const;
+  int face_count() const { return static_cast<int>(faces_.size()); }
+
+  /// Incremental gathering at one point (the local pass): faces are projected as they are
+  /// added, each once, in any order (the visible surface does not depend on it); the result at
+  /// any time counts the visible parts of the added faces marked radiating. Those parts are
+  /// final once every face that may hide them has been added.
+  class Session {
+   public:
+    Session(const HemisphereGatherer& gatherer, const Vec3& x, const Vec3& n);
+    /// Projects these faces (those already added are skipped), nearest first.
+    void add(const std::vector<int>& faces);
+    int added() const { return added_count_; }
+    /// Irradiance from the added faces flagged in `radiating` (one flag per face), and the
+    /// form factor they cover.
+    Rgb irradiance(const std::vector<char>& radiating, double* covered) const;
+
+   private:
+    const HemisphereGatherer& gatherer_;
+    Vec3 x_, n_;
+    std::vector<char> added_;
+    int added_count_ = 0;
+    std::shared_ptr<void> visible_;  ///< hemi::VisibleSurface (kept out of this header)
+  };
 
  private:
+  GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments, const std::vector<char>* emitting,
+                      const std::vector<char>* present) const;
+  /// Projects face k into `visible` if it has solid angle above x's horizon.
+  void project(int k, const Vec3& x, const Vec3& n, void* visible) const;
+
   const Scene& scene_;
   std::vector<EmittingFace> faces_;
   std::vector<Vec3> centres_;     ///< Per face: centre of its bounding sphere...

@@ -293,6 +293,10 @@ VertexTracer::VertexTracer(const Scene& scene, std::vector<EmittingFace> faces)
 }
 
 VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Options& options) const {
+  if (options.emitting && options.emitting->size() != faces_.size()) {
+    throw Error("vertex tracing: " + std::to_string(options.emitting->size()) + " emitting flags for " +
+                std::to_string(faces_.size()) + " faces");
+  }
   VertexTraceResult result;
   const PlaneFrame frame(Vec3::Zero(), n);
   const auto rotate = [&](const Vec3& r) { return Vec3(frame.u.dot(r), frame.v.dot(r), n.dot(r)); };
@@ -337,7 +341,8 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
     lf.normal = rotate(polygon.normal);
     lf.offset = offset;
     // The receiver sees the front when it lies in front of the plane (offset < 0).
-    lf.exitance = offset < 0 ? face.exitance : Rgb::Zero();
+    const bool radiates = !options.emitting || (*options.emitting)[i];
+    lf.exitance = offset < 0 && radiates ? face.exitance : Rgb::Zero();
     const size_t m = loop.size();
     for (size_t j = 0; j < m; ++j) {
       lf.dirs.push_back(loop[j].normalized());

@@ -34,6 +34,9 @@ class VertexTracer {
     /// only vertices that appear inside a source can contribute). false: everything, for
     /// checking that culling changes nothing.
     bool cull_to_emitters = true;
+    /// One flag per face: only marked faces radiate, the others are black (they still
+    /// occlude). Null: every face radiates its exitance.
+    const std::vector<char>* emitting = nullptr;
   };
 
   /// Direct lighting: polygons radiate their material's emission.
@@ -44,6 +47,7 @@ class VertexTracer {
   /// Irradiance at x for unit receiver normal n. Thread-safe.
   VertexTraceResult gather(const Vec3& x, const Vec3& n) const { return gather(x, n, Options{}); }
   VertexTraceResult gather(const Vec3& x, const Vec3& n, const Options& options) const;
+  int face_count() const { return static_cast<int>(faces_.size()); }
 
  private:
   struct Segment {

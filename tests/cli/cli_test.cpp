@@ -127,13 +127,13 @@ TEST(Cli, RenderAlbedoWritesExrAndPng) {
 
 TEST(Cli, RenderWithoutCameraOrWithBadOutputExitsOne) {
   const fs::path dir = scratch();
-  Result r = run("render '" + (kData / "meshes/square_obj.json").string() + "' -o '" +
+  Result r = run("render '" + (kData / "meshes/square_obj.json").string() + "' --method albedo -o '" +
                  (dir / "x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("no \"camera\" block"), std::string::npos) << r.err;
   // An output whose folder cannot be created (a regular file is in the way).
   std::ofstream(dir / "file") << "x";
-  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() + "' --width 8 --height 8 -o '" +
+  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() + "' --method albedo --width 8 --height 8 -o '" +
           (dir / "file/x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("file/x.exr"), std::string::npos) << r.err;
@@ -244,6 +244,45 @@ TEST(Cli, ProbeRejectsMalformedPointsNamingTheLine) {
     EXPECT_EQ(r.exit_code, 1) << file;
     EXPECT_NE(r.err.find(message), std::string::npos) << file << ": " << r.err;
     EXPECT_EQ(r.out, "") << file;
+  }
+}
+
+TEST(Cli, LocalPassRenderWritesImageStatsAndProbeFillsTheBound) {
+  const fs::path dir = scratch();
+  const std::string scene = quoted(kRoot / "data/light-over-floor/scene.json");
+  Result r = run("solve " + scene + " --patch-size 0.2 -o " + quoted(dir / "s.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run("render " + scene + " --method hemisphere --tolerance 0.2 --solution " + quoted(dir / "s.vtp") +
+          " --width 16 --height 12 -o " + quoted(dir / "lp.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(rad::read_exr(dir / "lp.exr").width, 16);
+  EXPECT_TRUE(fs::exists(dir / "lp.png"));
+  const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "lp.stats.json"));
+  for (const char* key : {"seconds", "emitting_per_pixel", "emitting_fraction_mean", "projected_per_pixel", "bound",
+                          "faces", "octree_leaves", "pixels_gathered"}) {
+    EXPECT_TRUE(stats.contains(key)) << key;
+  }
+  EXPECT_EQ(stats["tolerance"].get<double>(), 0.2);
+  EXPECT_GT(stats["pixels_gathered"].get<int>(), 0);
+  EXPECT_LE(stats["emitting_fraction_mean"].get<double>(), 1.0);
+  // The exact methods need a solution.
+  r = run("render " + scene + " --method vertex --width 8 --height 8 -o " + quoted(dir / "v.exr"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("needs --solution"), std::string::npos) << r.err;
+  // probe with a solution: exact at tolerance 0 (bound 0), a bound >= 0 otherwise, within it.
+  std::ofstream(dir / "p.csv") << "0,0,0,0,1,0\n0.3,0,0.2,0,1,0\n";
+  const std::string probe = "probe " + scene + " --points " + quoted(dir / "p.csv") + " --solution " + quoted(dir / "s.vtp");
+  const Result exact = run(probe), bounded = run(probe + " --tolerance 0.3");
+  ASSERT_EQ(exact.exit_code, 0) << exact.err;
+  ASSERT_EQ(bounded.exit_code, 0) << bounded.err;
+  std::string header;
+  const auto e = parse_csv(exact.out, &header), b = parse_csv(bounded.out, &header);
+  ASSERT_EQ(e.size(), 2u);
+  ASSERT_EQ(b.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(e[i][9], 0.0);
+    EXPECT_GE(b[i][9], 0.0);
+    for (int c = 6; c < 9; ++c) EXPECT_LE(std::abs(b[i][c] - e[i][c]), b[i][9] * (1 + 1e-9) + 1e-12) << "row " << i;
   }
 }
 

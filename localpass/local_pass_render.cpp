@@ -1,0 +1,69 @@
+#include "localpass/local_pass_render.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+
+
+namespace rad {
+
+namespace {
+
+/// Shared pixel loop: `shade(hit, index, out)` fills pixel `index` of a front-facing hit.
+template <typename Shade>
+LocalPassImage render_pixels(const RayCaster& caster, const Camera& camera, const std::function<void(size_t)>& progress,
+                             const Shade& shade) {
+  const int width = camera.width(), height = camera.height();
+  LocalPassImage out;
+  out.radiosity = Image(width, height);
+  out.bound = Image(width, height);
+  const size_t count = static_cast<size_t>(width) * height;
+  out.emitting.assign(count, 0);
+  out.projected.assign(count, 0);
+  out.surface.assign(count, 0);
+  std::atomic<size_t> done{0};
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16), [&](const tbb::blocked_range2d<int>& tile) {
+    for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
+      for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+        const size_t index = static_cast<size_t>(y) * width + x;
+        const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
+        if (!hit || !hit->front_facing) continue;
+        shade(*hit, index, out);
+        out.surface[index] = 1;
+      }
+    }
+    const size_t finished = done += tile.rows().size() * tile.cols().size();
+    if (progress) progress(finished);
+  });
+  return out;
+}
+
+}  // namespace
+
+LocalPassImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                                 const LocalPass& pass, double tolerance,
+                                 const std::function<void(size_t)>& progress) {
+  return render_pixels(caster, camera, progress, [&](const Hit& hit, size_t index, LocalPassImage& out) {
+    const Material& material = scene.materials[scene.polygons[hit.polygon].material];
+    const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
+    out.radiosity.pixels[index] = material.emission + material.reflectance.cwiseProduct(r.irradiance);
+    out.bound.pixels[index] = material.reflectance.cwiseProduct(r.bound);
+    out.emitting[index] = r.emitting;
+    out.projected[index] = r.projected;
+  });
+}
+
+LocalPassImage render_monte_carlo(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                                  const MonteCarloGatherer& gatherer, int samples,
+                                  const std::function<void(size_t)>& progress) {
+  return render_pixels(caster, camera, progress, [&](const Hit& hit, size_t index, LocalPassImage& out) {
+    const Material& material = scene.materials[scene.polygons[hit.polygon].material];
+    const Rgb h = gatherer.gather(hit.point, hit.normal, samples, index);
+    out.radiosity.pixels[index] = material.emission + material.reflectance.cwiseProduct(h);
+    out.emitting[index] = samples;
+    out.projected[index] = samples;
+  });
+}
+
+}  // namespace rad
