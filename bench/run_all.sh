@@ -72,3 +72,20 @@ table=$("$build/bench/hemisphere_bench" 40)
   echo "$table"
 } > "$out/hemisphere.md"
 echo "wrote $out/hemisphere.md" >&2
+
+# The error-bounded local pass against tolerance 0 and the Monte Carlo baseline
+size=${LOCAL_PASS_SIZE:-64}
+table=$("$build/bench/local_pass_bench" "$size")
+{
+  echo "# The error-bounded local pass on the Cornell box"
+  echo
+  echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/local_pass_bench $size\`; set LOCAL_PASS_SIZE for"
+  echo "another image size): per method and tolerance, the image from the scene camera against the same"
+  echo "method at tolerance 0; relative errors on each pixel's brightest channel; \"error / bound\" is the"
+  echo "actual error over the certified bound (1 would be tight); the last column is the time the Monte"
+  echo "Carlo gather (second table) needs for the same RMS error, interpolated. All cores."
+  machine
+  echo
+  echo "$table"
+} > "$out/local_pass.md"
+echo "wrote $out/local_pass.md" >&2

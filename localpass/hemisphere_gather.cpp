@@ -31,26 +31,11 @@ HemisphereGatherer::HemisphereGatherer(const Scene& scene, std::vector<EmittingF
 }
 
 GatherResult HemisphereGatherer::gather(const Vec3& x, const Vec3& n, bool keep_fragments) const {
-  return gather(x, n, keep_fragments, nullptr, nullptr);
-}
-
-GatherResult HemisphereGatherer::gather(const Vec3& x, const Vec3& n, const std::vector<char>& emitting,
-                                        const std::vector<char>& present) const {
-  if (emitting.size() != faces_.size() || present.size() != faces_.size()) {
-    throw Error("hemisphere gather: " + std::to_string(emitting.size()) + " emitting and " +
-                std::to_string(present.size()) + " present flags for " + std::to_string(faces_.size()) + " faces");
-  }
-  return gather(x, n, false, &emitting, &present);
-}
-
-GatherResult HemisphereGatherer::gather(const Vec3& x, const Vec3& n, bool keep_fragments,
-                                        const std::vector<char>* emitting, const std::vector<char>* present) const {
   // Front to back by a lower bound on distance (ties by index): far faces then stop at their
   // first depth test. The order never changes the result, only the work.
   std::vector<std::pair<double, int>> order;
   order.reserve(faces_.size());
   for (size_t k = 0; k < faces_.size(); ++k) {
-    if (present && !(*present)[k]) continue;
     order.emplace_back(std::max(0.0, (centres_[k] - x).norm() - radii_[k]), static_cast<int>(k));
   }
   std::sort(order.begin(), order.end());
@@ -66,7 +51,7 @@ GatherResult HemisphereGatherer::gather(const Vec3& x, const Vec3& n, bool keep_
     // The receiver sees the front when it lies in front of the plane.
     const bool front = polygon.normal.dot(x - polygon.vertices.front()) > 0;
     result.covered += ff;
-    if (front && (!emitting || (*emitting)[f.id])) result.irradiance += ff * face.exitance;
+    if (front) result.irradiance += ff * face.exitance;
     if (keep_fragments) result.fragments.push_back({face.polygon, ff, front, f.region.vertices()});
   }
   return result;

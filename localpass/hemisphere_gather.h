@@ -44,12 +44,6 @@ class HemisphereGatherer {
   /// Cost: O(P log P) to order the P convex pieces, then one BSP insertion per piece above the
   /// horizon (measured in bench/results/hemisphere.md).
   GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments = false) const;
-  /// As gather, with only the faces marked in `emitting` radiating (the others are black) and
-  /// only those marked in `present` projected at all: `present` must hold every face that may
-  /// hide an emitting one from x (the local pass passes what its voxels cannot rule out).
-  /// Both have one entry per face.
-  GatherResult gather(const Vec3& x, const Vec3& n, const std::vector<char>& emitting,
-                      const std::vector<char>& present) const;
   int face_count() const { return static_cast<int>(faces_.size()); }
 
   /// Incremental gathering at one point (the local pass): faces are projected as they are
@@ -75,8 +69,6 @@ class HemisphereGatherer {
   };
 
  private:
-  GatherResult gather(const Vec3& x, const Vec3& n, bool keep_fragments, const std::vector<char>* emitting,
-                      const std::vector<char>* present) const;
   /// Projects face k into `visible` if it has solid angle above x's horizon.
   void project(int k, const Vec3& x, const Vec3& n, void* visible) const;
 

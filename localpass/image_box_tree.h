@@ -4,7 +4,7 @@
 /// of edges that may appear to cross without testing all pairs. Boxes of projected vertices
 /// rather than the paper's 3D bounding spheres: the projection is computed per point anyway,
 /// convex faces and edges project to convex sets bounded exactly by their vertices' box, and
-/// the tolerances are relative to |q| (image coordinates reach ~1e12 next to the horizon).
+/// the tolerances are relative to |q| (image coordinates reach 1e8 at the image square).
 #include <Eigen/Geometry>
 #include <vector>
 

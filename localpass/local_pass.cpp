@@ -63,31 +63,13 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, ExactM
   }
 }
 
-Rgb LocalPass::gather_exact(const Vec3& x, const Vec3& n, const std::vector<char>& emitting,
-                            const std::vector<int>& voxels, int* projected) const {
+Rgb LocalPass::gather_exact(const Vec3& x, const Vec3& n, const std::vector<char>& emitting) const {
   if (tracer_) {
     VertexTracer::Options options;
     options.emitting = &emitting;
-    *projected = static_cast<int>(std::count(emitting.begin(), emitting.end(), 1));
     return tracer_->gather(x, n, options).irradiance;
   }
-  if (std::all_of(emitting.begin(), emitting.end(), [](char e) { return e != 0; })) {
-    *projected = static_cast<int>(faces_.size());
-    return hemisphere_->gather(x, n).irradiance;
-  }
-  // Project the emitting faces and whatever may hide them (004's SolveVisibility, by voxel).
-  std::vector<Cone> targets;
-  for (const int v : voxels) targets.push_back(cone_of(x, leaf_centre_[v], leaf_radius_[v]));
-  std::vector<char> present(faces_.size(), 0);
-  for (const int u : octree_.leaves()) {
-    const Cone cone = cone_of(x, leaf_centre_[u], leaf_radius_[u]);
-    const bool needed = std::any_of(targets.begin(), targets.end(), [&](const Cone& t) { return may_hide(cone, t); });
-    if (!needed) continue;
-    for (const int i : octree_.voxels()[u].items) present[i] = 1;
-  }
-  for (size_t i = 0; i < faces_.size(); ++i) present[i] = present[i] || emitting[i];
-  *projected = static_cast<int>(std::count(present.begin(), present.end(), 1));
-  return hemisphere_->gather(x, n, emitting, present).irradiance;
+  return hemisphere_->gather(x, n).irradiance;  // every face radiates (tolerance 0)
 }
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
@@ -96,8 +78,8 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
   std::vector<char> emitting(faces_.size(), 0);
   if (!(tolerance > 0)) {
     std::fill(emitting.begin(), emitting.end(), 1);
-    result.irradiance = gather_exact(x, n, emitting, leaves, &result.projected);
-    result.emitting = static_cast<int>(faces_.size());
+    result.irradiance = gather_exact(x, n, emitting);
+    result.emitting = result.projected = static_cast<int>(faces_.size());
     result.voxels = static_cast<int>(leaves.size());
     result.gathers = 1;
     return result;
@@ -193,9 +175,8 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
       session->add(faces);
       exact = session->irradiance(emitting, &covered);
     } else {
-      int projected = 0;
-      exact += gather_exact(x, n, emitting, batch, &projected);
-      result.projected += projected;
+      exact += gather_exact(x, n, emitting);
+      result.projected += static_cast<int>(std::count(emitting.begin(), emitting.end(), 1));
       for (const int v : batch) {
         for (const int i : octree_.voxels()[v].items) emitting[i] = 0;
       }

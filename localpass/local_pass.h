@@ -33,7 +33,8 @@ struct LocalPassResult {
   Rgb irradiance = Rgb::Zero();  ///< H(x) estimate [W/m^2]: the exact part plus half the remainder bound
   Rgb bound = Rgb::Zero();       ///< Certified: |H(x) - irradiance| <= bound, per channel
   int emitting = 0;              ///< Faces gathered exactly (radiating in some gather)
-  int projected = 0;             ///< Faces projected (hemisphere: emitting + possible occluders)
+  int projected = 0;             ///< Faces projected (hemisphere: emitting + possible occluders;
+                                 ///< vertex tracing: the radiating faces, summed over its traces)
   int voxels = 0;                ///< Leaf voxels selected
   int gathers = 0;               ///< Exact gathers run (0 when nothing can light x)
 };
@@ -55,10 +56,9 @@ class LocalPass {
   int face_count() const { return static_cast<int>(faces_.size()); }
 
  private:
-  /// One exact gather with `emitting` faces radiating; `voxels` are theirs (for the
-  /// hemisphere's occluder selection).
-  Rgb gather_exact(const Vec3& x, const Vec3& n, const std::vector<char>& emitting, const std::vector<int>& voxels,
-                   int* projected) const;
+  /// One exact gather from scratch with the `emitting` faces radiating (vertex tracing; the
+  /// hemisphere only at tolerance 0, with every face radiating: it is incremental otherwise).
+  Rgb gather_exact(const Vec3& x, const Vec3& n, const std::vector<char>& emitting) const;
 
   std::vector<EmittingFace> faces_;
   ExactMethod method_;

@@ -304,7 +304,7 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
 
   // 1. The faces inside the image square (above the horizon), in local coordinates.
   std::vector<LocalFace> faces;
-  ImageBox emitters;
+  std::vector<ImageBox> emitter_boxes;
   for (size_t i = 0; i < faces_.size(); ++i) {
     const EmittingFace& face = faces_[i];
     const Polygon& polygon = scene_.polygons[face.polygon];
@@ -358,15 +358,21 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
     }
     lf.silhouette = std::move(flags);
     lf.box = padded_box(lf.image, kNape);
-    if (lf.exitance != Rgb::Zero()) emitters.extend(padded_box(lf.image, kCullMargin));
+    if (lf.exitance != Rgb::Zero()) emitter_boxes.push_back(padded_box(lf.image, kCullMargin));
     faces.push_back(std::move(lf));
   }
-  if (emitters.isEmpty()) return result;
-  ImageBox region = emitters;
-  if (!options.cull_to_emitters) {
-    region = ImageBox(Vec2::Constant(-std::numeric_limits<double>::max()), Vec2::Constant(std::numeric_limits<double>::max()));
-  }
-  std::erase_if(faces, [&](const LocalFace& f) { return !f.box.intersects(region); });
+  if (emitter_boxes.empty()) return result;
+  // Only what may show in front of an emitter's image box matters (001 §4.1), box by box: the
+  // emitters of a local-pass batch lie in many directions, and one box around them all would
+  // keep nearly everything.
+  const ImageBoxTree emitter_tree(emitter_boxes);
+  const auto near_emitter = [&](const ImageBox& box) {
+    if (!options.cull_to_emitters) return true;
+    bool found = false;
+    emitter_tree.query(box, [&](int) { found = true; });
+    return found;
+  };
+  std::erase_if(faces, [&](const LocalFace& f) { return !near_emitter(f.box); });
 
   // 2. Features: face edges, then intersection segments inside the square.
   std::vector<Feature> features;
@@ -396,7 +402,7 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
     if (!(k.norm() > 0)) continue;
     const Vec3 da = a.normalized(), db = b.normalized();
     const ImageBox box = padded_box({image_of(a), image_of(b)}, kNape);
-    if (!box.intersects(region)) continue;
+    if (!near_emitter(box)) continue;
     features.push_back({da, db, k.normalized(), image_of(a), image_of(b), -1, true});
     feature_boxes.push_back(box);
     candidates.push_back({da, image_of(a), true});
@@ -490,7 +496,7 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
       }
       const Vec3 d = candidates[representative].d;
       const Vec2 q = candidates[representative].q;
-      if (!region.contains(q)) continue;  // culled: no emitter can show here
+      if (!near_emitter(ImageBox(q, q))) continue;  // culled: no emitter can show here
       double spread = 0;
       for (const int c : group) spread = std::max(spread, relative_distance(candidates[c].q, q));
       const double radius = kNape + spread;
