@@ -11,9 +11,14 @@
 /// most the largest radiosity among those of them that can light x, so their terms sum to at
 /// most Bound(x, v) (eq. 8, octree/octree.h). Hence
 ///   0 <= H - H_S <= R = sum over unselected voxels of Bound(x, v),
-/// per channel. (004's SolveVisibility, which projects the voxels that may hide v first, is
-/// what makes its partial images right; here visibility is always complete, and the error has
-/// one sign.) The pass reports H_S + R/2 with the bound R/2, and stops when
+/// per channel. Vertex tracing gets this by tracing every face as an occluder. The hemisphere
+/// projects incrementally instead, and projects with each selected voxel every voxel that may
+/// hide it (004's SolveVisibility: the bounding-sphere cones overlap and the other reaches
+/// nearer), so the selected faces' visible parts are exact there too; and as the unselected
+/// faces can only show outside those parts, with C the form factor they cover,
+///   H - H_S <= (largest unselected radiosity toward x) * (1 - C),
+/// the certified form of 004's eq. 10, and R is the smaller of the two. The error has one sign.
+/// The pass reports H_S + R/2 with the bound R/2, and stops when
 ///   max_c R_c / 2 <= tolerance * max_c (H_S + R/2)_c,
 /// so the relative error (against the brightest channel) is at most the tolerance.
 #include <optional>
