@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <functional>
 #include <limits>
@@ -97,13 +96,7 @@ void run_probe(const ProbeOptions& o) {
   if (o.output.empty()) {
     write_probe_csv(std::cout, points, irradiance, bound);
   } else {
-    AtomicFile out(o.output);
-    {
-      std::ofstream file(out.temp_path());
-      write_probe_csv(file, points, irradiance, bound);
-      if (!file.flush()) throw Error(o.output + ": cannot write");
-    }
-    out.commit();
+    write_text_file(o.output, [&](std::ostream& file) { write_probe_csv(file, points, irradiance, bound); });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string what = o.solution.empty() ? "direct only" : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -146,13 +145,7 @@ void run_render(const RenderOptions& o) {
   if (local) {
     const std::filesystem::path path = o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
                                                        : std::filesystem::path(o.stats);
-    AtomicFile out(path);
-    {
-      std::ofstream file(out.temp_path());
-      file << stats.dump(2) << "\n";
-      if (!file.flush()) throw Error(path.string() + ": cannot write");
-    }
-    out.commit();
+    write_text_file(path, [&](std::ostream& file) { file << stats.dump(2) << "\n"; });
     written += ", " + path.string();
   }
   const double seconds =

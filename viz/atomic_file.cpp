@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <fstream>
 #include <system_error>
 
 #include "scene/error.h"
@@ -32,6 +33,16 @@ void AtomicFile::commit() {
   std::filesystem::rename(temp_, target_, ec);
   if (ec) throw Error(target_.string() + ": cannot write: " + ec.message());
   committed_ = true;
+}
+
+void write_text_file(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write) {
+  AtomicFile out(target);
+  {
+    std::ofstream file(out.temp_path());
+    write(file);
+    if (!file.flush()) throw Error(target.string() + ": cannot write");
+  }
+  out.commit();
 }
 
 }  // namespace rad

@@ -2,6 +2,8 @@
 /// Writing outputs so that nothing a user has is lost: write a temporary file beside the target
 /// and rename it over the target only when writing succeeded.
 #include <filesystem>
+#include <functional>
+#include <ostream>
 
 namespace rad {
 
@@ -26,5 +28,9 @@ class AtomicFile {
   std::filesystem::path temp_;
   bool committed_ = false;
 };
+
+/// Writes a text file through an AtomicFile: `write` fills the stream; a failed write throws
+/// Error naming the target, and the target is then untouched.
+void write_text_file(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write);
 
 }  // namespace rad

@@ -10,6 +10,7 @@
 #include "localpass/hemisphere_gather.h"
 #include "radiosity/form_factor.h"
 #include "scene/scene_loader.h"
+#include "tests/surface_points.h"
 
 namespace rad {
 namespace {
@@ -32,21 +33,7 @@ TEST(HemisphereCornell, HundredThousandSurfacePointsGiveFiniteNonNegativeResults
   std::vector<Point> points;
   for (int i = 0; i < 100000; ++i) {
     const Polygon& p = scene.polygons[pick(rng)];
-    const size_t k = p.vertices.size();
-    const double kind = u(rng);
-    Vec3 x;
-    if (kind < 0.05) {
-      x = p.vertices[static_cast<size_t>(u(rng) * k) % k];
-    } else if (kind < 0.15) {
-      const size_t e = static_cast<size_t>(u(rng) * k) % k;
-      x = p.vertices[e] + u(rng) * (p.vertices[(e + 1) % k] - p.vertices[e]);
-    } else {
-      // Inside a fan triangle, uniformly.
-      const size_t t = 1 + static_cast<size_t>(u(rng) * (k - 2)) % (k - 2);
-      double a = u(rng), b = u(rng);
-      if (a + b > 1) a = 1 - a, b = 1 - b;
-      x = p.vertices[0] + a * (p.vertices[t] - p.vertices[0]) + b * (p.vertices[t + 1] - p.vertices[0]);
-    }
+    const Vec3 x = test::random_surface_point(p, rng, 0.05, 0.10);
     points.push_back({x, p.normal});
   }
   std::atomic<int> bad{0};

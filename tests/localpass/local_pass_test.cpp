@@ -5,35 +5,18 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include <filesystem>
 #include <random>
 
 #include "localpass/local_pass_render.h"
 #include "localpass/monte_carlo.h"
-#include "radiosity/solver.h"
 #include "scene/ray_caster.h"
-#include "scene/scene_loader.h"
+#include "tests/coarse_solution.h"
 
 namespace rad {
 namespace {
 
-struct CornellSolution {
-  Scene scene;
-  std::vector<EmittingFace> faces;
-  CornellSolution() {
-    scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
-    SolverSettings settings;
-    settings.patch_size = 0.25;
-    settings.refine_threshold = 0.2;
-    settings.refine_passes = 1;
-    settings.unshot_fraction = 1e-2;
-    faces = faces_from_solution(scene, solve(RayCaster(scene), settings));
-  }
-};
-const CornellSolution& cornell_solution() {
-  static const CornellSolution s;
-  return s;
-}
+using CornellSolution = test::SolvedScene;
+const CornellSolution& cornell_solution() { return test::coarse_cornell(); }
 
 struct SurfacePoint {
   Vec3 x, n;
@@ -174,7 +157,7 @@ TEST(MonteCarlo, ConvergesToTheExactGatherAndIsSeeded) {
   // 16x the samples: a quarter of the error, give or take the noise of 60 points.
   EXPECT_LT(rms[1], 0.4 * rms[0]) << rms[0] << " " << rms[1];
   EXPECT_LT(rms[2], 0.4 * rms[1]) << rms[1] << " " << rms[2];
-  EXPECT_LT(rms[2], 0.05);
+  EXPECT_LT(rms[2], 0.02);  // measured 0.014 (0.73, 0.084 at 64 and 1024 samples)
   EXPECT_EQ(mc.gather(points[0].x, points[0].n, 64, 7), mc.gather(points[0].x, points[0].n, 64, 7));
   EXPECT_NE(mc.gather(points[0].x, points[0].n, 64, 7), mc.gather(points[0].x, points[0].n, 64, 8));
 }

@@ -13,8 +13,10 @@
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 #include "tests/closed_forms.h"
+#include "tests/coarse_solution.h"
 #include "tests/random_scenes.h"
 #include "tests/scene_builder.h"
+#include "tests/surface_points.h"
 
 namespace rad {
 namespace {
@@ -140,14 +142,9 @@ TEST(VertexTracing, EmitterCullingChangesNothing) {
 /// Both methods at points on the surfaces of `scene` (every fifth on an edge or at a vertex),
 /// every leaf element of a coarse solution emitting its radiosity (001 §4.2).
 int radiosity_disagreements(const std::string& name, int points) {
-  const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data" / name / "scene.json");
-  SolverSettings settings;
-  settings.patch_size = 0.25;
-  settings.refine_threshold = 0.2;
-  settings.refine_passes = 1;
-  settings.unshot_fraction = 1e-2;
-  const Solution solution = solve(RayCaster(scene), settings);
-  const auto faces = faces_from_solution(scene, solution);
+  const test::SolvedScene solved = test::solve_coarse(name);
+  const Scene& scene = solved.scene;
+  const auto& faces = solved.faces;
   EXPECT_GT(faces.size(), 50u);
   const VertexTracer tracer(scene, faces);
   const HemisphereGatherer hemisphere(scene, faces);
@@ -239,20 +236,7 @@ TEST(VertexTracing, AgreesWithHemisphereInTheCornellBoxWithEveryPolygonEmitting)
   int disagreements = 0;
   for (int i = 0; i < 2000; ++i) {
     const Polygon& p = scene.polygons[static_cast<size_t>(u(rng) * scene.polygons.size()) % scene.polygons.size()];
-    const size_t k = p.vertices.size();
-    const double kind = u(rng);
-    Vec3 x;
-    if (kind < 0.05) {
-      x = p.vertices[static_cast<size_t>(u(rng) * k) % k];
-    } else if (kind < 0.2) {
-      const size_t e = static_cast<size_t>(u(rng) * k) % k;
-      x = p.vertices[e] + u(rng) * (p.vertices[(e + 1) % k] - p.vertices[e]);
-    } else {
-      const size_t t = 1 + static_cast<size_t>(u(rng) * (k - 2)) % (k - 2);
-      double a = u(rng), b = u(rng);
-      if (a + b > 1) a = 1 - a, b = 1 - b;
-      x = p.vertices[0] + a * (p.vertices[t] - p.vertices[0]) + b * (p.vertices[t + 1] - p.vertices[0]);
-    }
+    const Vec3 x = test::random_surface_point(p, rng, 0.05, 0.15);
     const auto result = agree(tracer.gather(x, p.normal).irradiance, hemisphere.gather(x, p.normal).irradiance);
     if (!result && ++disagreements <= 5) ADD_FAILURE() << "at " << x.transpose() << ": " << result.message();
   }

@@ -4,41 +4,21 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <random>
 
 #include "localpass/emitting_faces.h"
 #include "localpass/hemisphere_gather.h"
 #include "localpass/local_pass.h"
 #include "radiosity/form_factor.h"
-#include "radiosity/solver.h"
-#include "scene/ray_caster.h"
-#include "scene/scene_loader.h"
+#include "tests/coarse_solution.h"
 
 namespace rad {
 namespace {
 
-/// The Cornell box and a coarse solution's leaf elements as faces (built once).
-struct Cornell {
-  Scene scene;
-  std::vector<EmittingFace> faces;
-  Cornell() {
-    scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
-    SolverSettings settings;
-    settings.patch_size = 0.25;
-    settings.refine_threshold = 0.2;
-    settings.refine_passes = 1;
-    settings.unshot_fraction = 1e-2;
-    faces = faces_from_solution(scene, solve(RayCaster(scene), settings));
-  }
-};
-const Cornell& cornell() {
-  static const Cornell c;
-  return c;
-}
+const test::SolvedScene& cornell() { return test::coarse_cornell(); }
 
 TEST(Octree, EveryItemInExactlyOneLeafInsideItsBounds) {
-  const Cornell& c = cornell();
+  const test::SolvedScene& c = cornell();
   const Octree tree(octree_items(c.scene, c.faces));
   std::vector<int> seen(c.faces.size(), 0);
   for (const int v : tree.leaves()) {
@@ -111,7 +91,7 @@ TEST(Octree, BoundsCoverWhatEachVoxelCanSendOverRandomTriples) {
   // Property (004 eqs. 7-8): for random (x, n, voxel), the bound is at least the exact
   // contribution of the voxel's items, each radiating its radiosity, occluded by one another
   // (nothing else can add light). Exact by the hemisphere gatherer over the voxel's faces.
-  const Cornell& c = cornell();
+  const test::SolvedScene& c = cornell();
   const Octree tree(octree_items(c.scene, c.faces));
   const auto& voxels = tree.voxels();
   std::vector<int> nonempty;

@@ -114,6 +114,25 @@ TEST(AtomicFile, LeavesTargetUntouchedUntilCommit) {
   EXPECT_EQ(updated, "new");
 }
 
+TEST(AtomicFile, WriteTextFileReplacesOnlyOnSuccess) {
+  const auto dir = temp_dir();
+  const auto target = dir / "out.csv";
+  std::ofstream(target) << "precious";
+  EXPECT_THROW(write_text_file(target, [](std::ostream& out) {
+                 out << "half";
+                 throw Error("writer failed");
+               }),
+               Error);
+  const auto read = [&] {
+    std::ifstream in(target);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(read(), "precious");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "temp file left behind";
+  write_text_file(target, [](std::ostream& out) { out << "new\n"; });
+  EXPECT_EQ(read(), "new\n");
+}
+
 TEST(AtomicFile, CreatesMissingFolders) {
   const auto target = temp_dir() / "a/b/c.exr";
   write_exr(target, random_image(2, 2, 3));
