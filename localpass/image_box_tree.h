@@ -39,6 +39,27 @@ class ImageBoxTree {
     }
   }
 
+  /// Whether any item's box intersects `query`; stops at the first.
+  bool any(const ImageBox& query) const {
+    if (nodes_.empty()) return false;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (!node.box.intersects(query)) continue;
+      if (node.left < 0) {
+        for (int i = node.first; i < node.first + node.count; ++i) {
+          if (boxes_[items_[i]].intersects(query)) return true;
+        }
+      } else {
+        stack[top++] = node.left;
+        stack[top++] = node.left + 1;
+      }
+    }
+    return false;
+  }
+
   /// Calls visit(a, b) for every item a of this tree and b of `other` whose boxes intersect.
   template <class Visit>
   void pairs(const ImageBoxTree& other, Visit&& visit) const {

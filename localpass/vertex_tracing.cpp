@@ -366,12 +366,7 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
   // emitters of a local-pass batch lie in many directions, and one box around them all would
   // keep nearly everything.
   const ImageBoxTree emitter_tree(emitter_boxes);
-  const auto near_emitter = [&](const ImageBox& box) {
-    if (!options.cull_to_emitters) return true;
-    bool found = false;
-    emitter_tree.query(box, [&](int) { found = true; });
-    return found;
-  };
+  const auto near_emitter = [&](const ImageBox& box) { return !options.cull_to_emitters || emitter_tree.any(box); };
   std::erase_if(faces, [&](const LocalFace& f) { return !near_emitter(f.box); });
 
   // 2. Features: face edges, then intersection segments inside the square.
