@@ -30,7 +30,7 @@ void clip_line(const std::vector<Vec3>& polygon, const Vec3& normal, const Vec3&
 
 }  // namespace
 
-std::vector<std::pair<Vec3, Vec3>> interpenetration_segments(const Scene& scene) {
+std::vector<Interpenetration> interpenetration_segments(const Scene& scene) {
   const auto pieces = faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero()));
   const double diagonal = scene.bounds().diagonal();
   const double pad = 1e-9 * diagonal;
@@ -46,7 +46,7 @@ std::vector<std::pair<Vec3, Vec3>> interpenetration_segments(const Scene& scene)
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return boxes[a].min().x() < boxes[b].min().x(); });
 
-  std::vector<std::pair<Vec3, Vec3>> segments;
+  std::vector<Interpenetration> segments;
   for (size_t oi = 0; oi < order.size(); ++oi) {
     const int i = order[oi];
     for (size_t oj = oi + 1; oj < order.size() && boxes[order[oj]].min().x() <= boxes[i].max().x(); ++oj) {
@@ -64,7 +64,7 @@ std::vector<std::pair<Vec3, Vec3>> interpenetration_segments(const Scene& scene)
       double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
       clip_line(pieces[i].vertices, A.normal, p, u, &t0, &t1);
       clip_line(pieces[j].vertices, B.normal, p, u, &t0, &t1);
-      if (t1 - t0 > 1e-12 * diagonal) segments.emplace_back(p + t0 * u, p + t1 * u);
+      if (t1 - t0 > 1e-12 * diagonal) segments.push_back({p + t0 * u, p + t1 * u, pieces[i].polygon, pieces[j].polygon});
     }
   }
   return segments;

@@ -287,7 +287,9 @@ VertexTracer::VertexTracer(const Scene& scene, std::vector<EmittingFace> faces)
                   " edge flags");
     }
   }
-  for (const auto& [a, b] : interpenetration_segments(scene)) intersections_.push_back({a, b});
+  for (const Interpenetration& s : interpenetration_segments(scene)) {
+    intersections_.push_back({s.a, s.b, s.polygon_a, s.polygon_b});
+  }
   const double diagonal = scene.bounds().diagonal();
   in_plane_ = 1e-12 * diagonal;
 }
@@ -305,7 +307,14 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
   // 1. The faces inside the image square (above the horizon), in local coordinates.
   std::vector<LocalFace> faces;
   std::vector<ImageBox> emitter_boxes;
-  for (size_t i = 0; i < faces_.size(); ++i) {
+  std::vector<char> polygon_present;  // with a face subset: polygons that have a face in it
+  if (options.faces) {
+    polygon_present.assign(scene_.polygons.size(), 0);
+    for (const int i : *options.faces) polygon_present[faces_[i].polygon] = 1;
+  }
+  const size_t face_count = options.faces ? options.faces->size() : faces_.size();
+  for (size_t index = 0; index < face_count; ++index) {
+    const size_t i = options.faces ? static_cast<size_t>((*options.faces)[index]) : index;
     const EmittingFace& face = faces_[i];
     const Polygon& polygon = scene_.polygons[face.polygon];
     const double offset = polygon.normal.dot(face.vertices.front() - x);
@@ -383,6 +392,7 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
   }
   std::vector<Candidate> candidates;
   for (const Segment& s : intersections_) {
+    if (options.faces && !(polygon_present[s.polygon_a] && polygon_present[s.polygon_b])) continue;
     Vec3 a = local(s.a), b = local(s.b);
     bool inside = true;
     for (const Vec3& plane : square_planes()) {

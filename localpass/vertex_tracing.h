@@ -37,6 +37,9 @@ class VertexTracer {
     /// One flag per face: only marked faces radiate, the others are black (they still
     /// occlude). Null: every face radiates its exitance.
     const std::vector<char>* emitting = nullptr;
+    /// Only these faces exist: the others neither radiate nor occlude (the local pass passes
+    /// the faces that may hide its radiating ones; localpass/occlusion_culling.h). Null: all.
+    const std::vector<int>* faces = nullptr;
   };
 
   /// Direct lighting: polygons radiate their material's emission.
@@ -52,6 +55,7 @@ class VertexTracer {
  private:
   struct Segment {
     Vec3 a, b;
+    int polygon_a, polygon_b;
   };
   const Scene& scene_;
   std::vector<EmittingFace> faces_;

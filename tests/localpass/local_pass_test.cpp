@@ -38,16 +38,23 @@ std::vector<SurfacePoint> surface_points(int count, uint64_t seed) {
   return points;
 }
 
-TEST(LocalPass, ToleranceZeroIsThePlainExactGather) {
+TEST(LocalPass, ToleranceZeroIsTheExactGatherWithNoBound) {
+  // The plain gather over every face is the reference (more in occlusion_culling_test.cpp).
   const CornellSolution& s = cornell_solution();
   const LocalPass pass(s.scene, s.faces, ExactMethod::hemisphere);
   const HemisphereGatherer plain(s.scene, s.faces);
+  int culled = 0;
   for (const SurfacePoint& p : surface_points(50, 1)) {
     const LocalPassResult r = pass.gather(p.x, p.n, 0);
-    EXPECT_EQ(r.irradiance, plain.gather(p.x, p.n).irradiance);
+    const Rgb reference = plain.gather(p.x, p.n).irradiance;
+    EXPECT_LE((r.irradiance - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.maxCoeff());
     EXPECT_EQ(r.bound, Rgb::Zero());
-    EXPECT_EQ(r.emitting, pass.face_count());
+    EXPECT_LE(r.gathers, 1);
+    culled += r.unoccluded > 0;
   }
+  // The culling took part, except at points under the blocks (the floor runs under them),
+  // where the blocks may hide everything.
+  EXPECT_GT(culled, 25);
 }
 
 TEST(LocalPass, HemisphereAndVertexAgreeAtToleranceZero) {

@@ -1,0 +1,210 @@
+#include "localpass/occlusion_culling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <ranges>
+
+#include "localpass/shaft.h"
+#include "scene/polygon.h"
+
+namespace rad {
+namespace {
+
+Eigen::AlignedBox3d box_of(const std::vector<Vec3>& points) {
+  Eigen::AlignedBox3d box;
+  for (const Vec3& p : points) box.extend(p);
+  return box;
+}
+
+/// Whether two convex polygons in one plane (normal n) overlap with positive area: no edge of
+/// either separates them by more than -tolerance (touching along an edge is not overlapping).
+bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n, double tolerance) {
+  const auto separated_by_edges_of = [&](const std::vector<Vec3>& p, const std::vector<Vec3>& q) {
+    const double orientation = newell_vector(p).dot(n) >= 0 ? 1 : -1;
+    for (size_t i = 0; i < p.size(); ++i) {
+      const Vec3 out = orientation * (p[(i + 1) % p.size()] - p[i]).cross(n);  // outward in-plane
+      const double norm = out.norm();
+      if (!(norm > 0)) continue;
+      const double edge = out.dot(p[i]) / norm;
+      const double nearest = std::ranges::min(q | std::views::transform([&](const Vec3& v) { return out.dot(v) / norm; }));
+      if (nearest >= edge - tolerance) return true;
+    }
+    return false;
+  };
+  return !separated_by_edges_of(a, b) && !separated_by_edges_of(b, a);
+}
+
+}  // namespace
+
+OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces, const Octree& octree)
+    : faces_(faces), octree_(octree) {
+  const double diagonal = scene.bounds().diagonal();
+  in_plane_ = 1e-12 * diagonal;
+  pad_ = 1e-9 * diagonal;
+  polygons_.resize(scene.polygons.size());
+  for (size_t p = 0; p < scene.polygons.size(); ++p) {
+    const Polygon& polygon = scene.polygons[p];
+    PolygonData& data = polygons_[p];
+    data.normal = polygon.normal;
+    data.offset = polygon.normal.dot(polygon.vertices.front());
+    data.vertices = polygon.vertices;
+    data.box = box_of(polygon.vertices);
+  }
+  for (size_t f = 0; f < faces_.size(); ++f) {
+    face_boxes_.push_back(box_of(faces_[f].vertices));
+  }
+
+  // Coplanar polygons that overlap (sort and sweep on the boxes, then in-plane overlap of the
+  // convex pieces).
+  const auto pieces = faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero()));
+  std::vector<std::vector<int>> pieces_of(scene.polygons.size());
+  for (size_t i = 0; i < pieces.size(); ++i) pieces_of[pieces[i].polygon].push_back(static_cast<int>(i));
+  std::vector<int> order(scene.polygons.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::ranges::sort(order, [&](int a, int b) { return polygons_[a].box.min().x() < polygons_[b].box.min().x(); });
+  for (size_t oi = 0; oi < order.size(); ++oi) {
+    PolygonData& a = polygons_[order[oi]];
+    for (size_t oj = oi + 1; oj < order.size() && polygons_[order[oj]].box.min().x() <= a.box.max().x() + pad_; ++oj) {
+      PolygonData& b = polygons_[order[oj]];
+      if (std::abs(a.normal.dot(b.normal)) < 1 - 1e-12) continue;
+      if (std::ranges::any_of(b.vertices, [&](const Vec3& v) { return std::abs(a.normal.dot(v) - a.offset) > pad_; })) {
+        continue;
+      }
+      bool overlap = false;
+      for (const int i : pieces_of[order[oi]]) {
+        for (const int j : pieces_of[order[oj]]) overlap = overlap || convex_overlap(pieces[i].vertices, pieces[j].vertices, a.normal, pad_);
+      }
+      if (!overlap) continue;
+      a.coplanar_overlapping.push_back(order[oj]);
+      b.coplanar_overlapping.push_back(order[oi]);
+    }
+  }
+
+  // Voxels with such faces below them are never unoccluded wholesale.
+  voxel_has_coplanar_.assign(octree_.voxels().size(), 0);
+  for (int v = static_cast<int>(octree_.voxels().size()) - 1; v >= 0; --v) {
+    const Voxel& voxel = octree_.voxels()[v];
+    char any = 0;
+    for (const int f : voxel.items) any |= !polygons_[faces_[f].polygon].coplanar_overlapping.empty();
+    if (!voxel.is_leaf()) {
+      for (int c = 0; c < 8; ++c) any |= voxel_has_coplanar_[voxel.first_child + c];
+    }
+    voxel_has_coplanar_[v] = any;
+  }
+}
+
+bool OcclusionCulling::can_light(int face, const Vec3& x, const Vec3& n) const {
+  const EmittingFace& f = faces_[face];
+  if (!(f.exitance.maxCoeff() > 0)) return false;
+  // The gatherers' tests: x strictly in front of the plane, and some part above the horizon.
+  if (!(polygons_[f.polygon].normal.dot(f.vertices.front() - x) < -in_plane_)) return false;
+  return std::ranges::any_of(f.vertices, [&](const Vec3& v) { return n.dot(v - x) > 0; });
+}
+
+void OcclusionCulling::filter(const std::vector<int>& candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
+                              const std::vector<Vec3>* face, std::vector<int>* out) const {
+  out->clear();
+  const Vec3 centre = box.center(), half = 0.5 * box.sizes();
+  for (const int p : candidates) {
+    const PolygonData& polygon = polygons_[p];
+    const double at_x = polygon.normal.dot(x) - polygon.offset;
+    // Its plane must put some of the box (or of the face: a slanted face's box pokes through
+    // the face's own plane) beyond it, seen from x.
+    double lo, hi;
+    if (face) {
+      lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Vec3& v : *face) {
+        const double s = polygon.normal.dot(v) - polygon.offset;
+        lo = std::min(lo, s), hi = std::max(hi, s);
+      }
+    } else {
+      const double at_centre = polygon.normal.dot(centre) - polygon.offset;
+      const double reach = polygon.normal.cwiseAbs().dot(half);
+      lo = at_centre - reach, hi = at_centre + reach;
+    }
+    if (at_x > 0 ? lo < -in_plane_ : hi > in_plane_) out->push_back(p);
+  }
+  if (out->empty()) return;
+  const Shaft shaft(x, box, pad_);
+  std::erase_if(*out, [&](int p) { return !shaft.may_meet(polygons_[p].vertices, polygons_[p].box); });
+}
+
+void OcclusionCulling::visit(int v, const std::vector<int>& candidates, const Vec3& x, const Vec3& n,
+                             OcclusionSplit* split) const {
+  const Voxel& voxel = octree_.voxels()[v];
+  if (voxel.item_count == 0) return;
+  const Vec3 centre = voxel.bounds.center(), half = 0.5 * voxel.bounds.sizes();
+  if (n.dot(centre - x) + n.cwiseAbs().dot(half) <= 0) return;  // wholly below the horizon
+  std::vector<int> passing;
+  filter(candidates, x, voxel.bounds, nullptr, &passing);
+  if (passing.empty() && !voxel_has_coplanar_[v]) {
+    for (const int f : octree_.items_below(v)) {
+      if (can_light(f, x, n)) split->unoccluded.push_back(f);
+    }
+    return;
+  }
+  if (!voxel.is_leaf()) {
+    for (int c = 0; c < 8; ++c) visit(voxel.first_child + c, passing, x, n, split);
+    return;
+  }
+  OcclusionSplit::Group group;
+  group.leaf = v;
+  std::vector<int> blockers, mine;
+  Eigen::AlignedBox3d group_box;
+  for (const int f : voxel.items) {
+    if (!can_light(f, x, n)) continue;
+    filter(passing, x, face_boxes_[f], &faces_[f].vertices, &mine);
+    for (const int q : polygons_[faces_[f].polygon].coplanar_overlapping) mine.push_back(q);
+    if (mine.empty()) {
+      split->unoccluded.push_back(f);
+      continue;
+    }
+    group.faces.push_back(f);
+    group_box.extend(face_boxes_[f]);
+    blockers.insert(blockers.end(), mine.begin(), mine.end());
+  }
+  if (group.faces.empty()) return;
+  std::ranges::sort(blockers);
+  blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
+  group.blockers = std::move(blockers);
+  group.box = group_box;
+  split->shadowed.push_back(std::move(group));
+}
+
+void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& group, std::vector<int>* out) const {
+  const Shaft shaft(x, group.box, pad_);
+  std::vector<int> stack = {0};
+  while (!stack.empty()) {
+    const Voxel& voxel = octree_.voxels()[stack.back()];
+    stack.pop_back();
+    if (voxel.item_count == 0 || !shaft.may_meet(voxel.bounds)) continue;
+    if (!voxel.is_leaf()) {
+      for (int c = 0; c < 8; ++c) stack.push_back(voxel.first_child + c);
+      continue;
+    }
+    for (const int g : voxel.items) {
+      if (std::ranges::binary_search(group.blockers, faces_[g].polygon) && shaft.may_meet(faces_[g].vertices, face_boxes_[g])) {
+        out->push_back(g);
+      }
+    }
+  }
+}
+
+OcclusionSplit OcclusionCulling::split(const Vec3& x, const Vec3& n) const {
+  OcclusionSplit split;
+  // Polygons that may hide anything: x off their plane (by more than half the gatherers'
+  // tolerance, so that every face the gatherers project is kept), part above the horizon.
+  std::vector<int> candidates;
+  for (size_t p = 0; p < polygons_.size(); ++p) {
+    const PolygonData& polygon = polygons_[p];
+    if (std::abs(polygon.normal.dot(x) - polygon.offset) <= 0.5 * in_plane_) continue;
+    if (std::ranges::any_of(polygon.vertices, [&](const Vec3& v) { return n.dot(v - x) > 0; })) {
+      candidates.push_back(static_cast<int>(p));
+    }
+  }
+  if (!octree_.voxels().empty()) visit(0, candidates, x, n, &split);
+  return split;
+}
+
+}  // namespace rad

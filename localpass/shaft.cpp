@@ -1,0 +1,92 @@
+#include "localpass/shaft.h"
+
+#include <algorithm>
+
+namespace rad {
+
+Shaft::Shaft(const Vec3& x, Eigen::AlignedBox3d box, double pad) : pad_(pad) {
+  box.min().array() -= pad;
+  box.max().array() += pad;
+  hull_box_ = box;
+  hull_box_.extend(x);
+  const Vec3 lo = box.min(), hi = box.max();
+  // Per axis: which face x sees (+1 the face at hi, -1 at lo, 0 neither: x within the slab).
+  int side[3];
+  for (int a = 0; a < 3; ++a) side[a] = x[a] > hi[a] ? 1 : x[a] < lo[a] ? -1 : 0;
+  // The box faces x does not see bound the hull: x lies on their inner side too.
+  for (int a = 0; a < 3; ++a) {
+    if (side[a] != 1) planes_[plane_count_++] = {Vec3::Unit(a), hi[a]};
+    if (side[a] != -1) planes_[plane_count_++] = {-Vec3::Unit(a), -lo[a]};
+  }
+  // Silhouette edges (between a face x sees and one it does not) span a plane with x each.
+  // An edge runs along axis c; its two faces are across axes a and b.
+  for (int c = 0; c < 3; ++c) {
+    const int a = (c + 1) % 3, b = (c + 2) % 3;
+    for (int ea = -1; ea <= 1; ea += 2) {
+      for (int eb = -1; eb <= 1; eb += 2) {
+        const bool sees_a = side[a] == ea, sees_b = side[b] == eb;
+        if (sees_a == sees_b) continue;
+        Vec3 corner = lo;
+        corner[a] = ea > 0 ? hi[a] : lo[a];
+        corner[b] = eb > 0 ? hi[b] : lo[b];
+        Vec3 normal = Vec3::Unit(c).cross(corner - x);
+        if (!(normal.norm() > 0)) continue;
+        normal.normalize();
+        // Orient it away from the box: the diagonally opposite edge lies inside.
+        Vec3 opposite = corner;
+        opposite[a] = ea > 0 ? lo[a] : hi[a];
+        opposite[b] = eb > 0 ? lo[b] : hi[b];
+        if (normal.dot(opposite - x) > 0) normal = -normal;
+        planes_[plane_count_++] = {normal, normal.dot(x)};
+      }
+    }
+  }
+}
+
+bool Shaft::may_meet(const std::vector<Vec3>& vertices) const {
+  Eigen::AlignedBox3d box;
+  for (const Vec3& v : vertices) box.extend(v);
+  return may_meet(vertices, box);
+}
+
+bool Shaft::may_meet(const std::vector<Vec3>& vertices, const Eigen::AlignedBox3d& vertex_box) const {
+  if (!hull_box_.intersects(vertex_box)) return false;
+  // The cheap test first: every vertex beyond one plane.
+  for (int i = 0; i < plane_count_; ++i) {
+    const Plane& p = planes_[i];
+    if (std::ranges::all_of(vertices, [&](const Vec3& v) { return p.normal.dot(v) > p.offset + pad_; })) return false;
+  }
+  // Clip the polygon by every plane of the shaft (Sutherland-Hodgman): what is left lies in the
+  // shaft (and, for a convex polygon, is exactly their intersection). A polygon spanning the
+  // shaft's cross-section with its vertices all around it is rejected too, which testing the
+  // vertices alone cannot do: a wall next to the box, beyond which the box pokes out.
+  thread_local std::vector<Vec3> polygon, clipped;
+  polygon.assign(vertices.begin(), vertices.end());
+  for (int i = 0; i < plane_count_ && !polygon.empty(); ++i) {
+    const Plane& p = planes_[i];
+    const double limit = p.offset + pad_;
+    clipped.clear();
+    for (size_t j = 0; j < polygon.size(); ++j) {
+      const Vec3& a = polygon[j];
+      const Vec3& b = polygon[(j + 1) % polygon.size()];
+      const double da = p.normal.dot(a) - limit, db = p.normal.dot(b) - limit;
+      if (da <= 0) clipped.push_back(a);
+      if ((da < 0 && db > 0) || (da > 0 && db < 0)) clipped.push_back(a + (da / (da - db)) * (b - a));
+    }
+    std::swap(polygon, clipped);
+  }
+  return !polygon.empty();
+}
+
+bool Shaft::may_meet(const Eigen::AlignedBox3d& box) const {
+  if (!hull_box_.intersects(box)) return false;
+  const Vec3 centre = box.center(), half = 0.5 * box.sizes();
+  for (int i = 0; i < plane_count_; ++i) {
+    const Plane& p = planes_[i];
+    // The box's nearest corner to the plane's inside.
+    if (p.normal.dot(centre) - p.normal.cwiseAbs().dot(half) > p.offset + pad_) return false;
+  }
+  return true;
+}
+
+}  // namespace rad
