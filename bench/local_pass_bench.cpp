@@ -2,8 +2,11 @@
 // and tolerance, seconds, the mean fraction of elements gathered (and projected), the largest
 // and RMS relative error against tolerance 0, and how tight the certified bound is; then the
 // Monte Carlo baseline's error at several sample counts, and the seconds it needs to reach each
-// row's RMS error (log-log interpolation). All cores. Prints Markdown tables.
-// Usage: local_pass_bench [SIZE] [PATCH_SIZE]   (image SIZE x SIZE, default 128; patch 0.07)
+// row's RMS error (log-log interpolation). All cores. Prints Markdown tables. With NAIVE = 1
+// (the default), each method's tolerance-0 image is also rendered without occlusion culling
+// (every element that can light the point gathered with every element as an occluder): the
+// naive exact gather the pass is measured against.
+// Usage: local_pass_bench [SIZE] [PATCH_SIZE] [NAIVE]   (SIZE x SIZE, default 128; patch 0.07; 1)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -76,6 +79,7 @@ double mean_fraction(const std::vector<int>& counts, const std::vector<char>& su
 int main(int argc, char** argv) {
   const int size = argc > 1 ? std::stoi(argv[1]) : 128;
   const double patch_size = argc > 2 ? std::stod(argv[2]) : 0.07;
+  const bool naive = argc > 3 ? std::stoi(argv[3]) != 0 : true;
   const rad::Scene scene = rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
   rad::SolverSettings settings;
   settings.patch_size = patch_size;
@@ -139,7 +143,21 @@ int main(int argc, char** argv) {
       const Errors e = compare(reference, hemisphere_reference);
       std::fprintf(stderr, "vertex vs hemisphere at tolerance 0: max relative difference %.2e\n", e.max);
     }
-    std::printf("| %s | 0 | %.1f | 1.00 | 100%% | 100%% | 0 | 0 | - | 0 | - |\n", name, reference_seconds);
+    std::printf("| %s | 0 | %.1f | 1.00 | %.1f%% | %.1f%% | 0 | 0 | - | 0 | - |\n", name, reference_seconds,
+                100 * mean_fraction(reference.emitting, reference.surface, pass.face_count()),
+                100 * mean_fraction(reference.projected, reference.surface, pass.face_count()));
+    if (naive) {
+      rad::LocalPassSettings no_culling;
+      no_culling.occlusion_culling = false;
+      const rad::LocalPass naive_pass(scene, faces, method, no_culling);
+      start = Clock::now();
+      const rad::LocalPassImage image = rad::render_local_pass(scene, caster, camera, naive_pass, 0);
+      const double s = seconds_since(start);
+      const Errors e = compare(image, reference);
+      std::printf("| %s, no culling | 0 | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | - | %d | - |\n", name, s,
+                  reference_seconds / s, 100 * mean_fraction(image.emitting, image.surface, pass.face_count()),
+                  100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms, e.violations);
+    }
     for (const double tolerance : tolerances) {
       start = Clock::now();
       const rad::LocalPassImage image = rad::render_local_pass(scene, caster, camera, pass, tolerance);

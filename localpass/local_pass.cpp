@@ -23,8 +23,9 @@ std::vector<OctreeItem> octree_items(const Scene& scene, const std::vector<Emitt
 }
 
 LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, ExactMethod method,
-                     const OctreeSettings& settings)
-    : faces_(std::move(faces)), method_(method), octree_(octree_items(scene, faces_), settings),
+                     const LocalPassSettings& settings)
+    : faces_(std::move(faces)), method_(method), occlusion_culling_(settings.occlusion_culling),
+      octree_(octree_items(scene, faces_), settings.octree),
       culling_(scene, faces_, octree_) {
   if (method_ == ExactMethod::hemisphere) {
     hemisphere_.emplace(scene, faces_);
@@ -35,7 +36,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, ExactM
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
   LocalPassResult result;
-  const OcclusionSplit split = culling_.split(x, n);
+  const OcclusionSplit split = occlusion_culling_ ? culling_.split(x, n) : culling_.split_without_culling(x, n);
 
   // Faces nothing can hide: exact by Lambert's formula alone.
   Rgb unoccluded = Rgb::Zero();

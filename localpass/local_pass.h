@@ -36,6 +36,14 @@ namespace rad {
 
 enum class ExactMethod { hemisphere, vertex };
 
+struct LocalPassSettings {
+  OctreeSettings octree;
+  /// false: no shaft culling; every face that can light x goes to the gatherer at once with
+  /// every face as an occluder (the naive exact gather, the baseline for measuring the culling;
+  /// the same values at tolerance 0).
+  bool occlusion_culling = true;
+};
+
 struct LocalPassResult {
   Rgb irradiance = Rgb::Zero();  ///< H(x) estimate [W/m^2]: the exact part plus half the remainder bound
   Rgb bound = Rgb::Zero();       ///< Certified: |H(x) - irradiance| <= bound, per channel
@@ -54,7 +62,7 @@ class LocalPass {
  public:
   /// `faces` are typically faces_from_solution (every element radiates its radiosity).
   LocalPass(const Scene& scene, std::vector<EmittingFace> faces, ExactMethod method,
-            const OctreeSettings& settings = {});
+            const LocalPassSettings& settings = {});
 
   /// Irradiance at x for unit normal n, to the given relative tolerance (0: exact, every face
   /// that may be hidden radiating in one gather). Thread-safe.
@@ -66,6 +74,7 @@ class LocalPass {
  private:
   std::vector<EmittingFace> faces_;
   ExactMethod method_;
+  bool occlusion_culling_;
   Octree octree_;
   std::optional<HemisphereGatherer> hemisphere_;
   std::optional<VertexTracer> tracer_;

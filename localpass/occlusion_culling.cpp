@@ -207,4 +207,18 @@ OcclusionSplit OcclusionCulling::split(const Vec3& x, const Vec3& n) const {
   return split;
 }
 
+OcclusionSplit OcclusionCulling::split_without_culling(const Vec3& x, const Vec3& n) const {
+  OcclusionSplit split;
+  OcclusionSplit::Group group;
+  group.leaf = 0;  // one group: the root
+  for (size_t f = 0; f < faces_.size(); ++f) {
+    if (can_light(static_cast<int>(f), x, n)) group.faces.push_back(static_cast<int>(f));
+  }
+  if (group.faces.empty()) return split;
+  for (size_t p = 0; p < polygons_.size(); ++p) group.blockers.push_back(static_cast<int>(p));
+  group.box = octree_.voxels()[0].bounds;  // with x or not, its shaft holds every face
+  split.shadowed.push_back(std::move(group));
+  return split;
+}
+
 }  // namespace rad

@@ -49,6 +49,9 @@ class OcclusionCulling {
   OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces, const Octree& octree);
 
   OcclusionSplit split(const Vec3& x, const Vec3& n) const;
+  /// The same faces with no culling: every one that can light x shadowed, in one group, with
+  /// every face its occluder (the baseline the culling is measured against).
+  OcclusionSplit split_without_culling(const Vec3& x, const Vec3& n) const;
   /// Every face that may hide part of the group's faces from x: the faces of its blockers that
   /// meet the shaft to its box (found through the octree). Appended to `out`.
   void occluders(const Vec3& x, const OcclusionSplit::Group& group, std::vector<int>* out) const;

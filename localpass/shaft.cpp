@@ -60,22 +60,34 @@ bool Shaft::may_meet(const std::vector<Vec3>& vertices, const Eigen::AlignedBox3
   // shaft (and, for a convex polygon, is exactly their intersection). A polygon spanning the
   // shaft's cross-section with its vertices all around it is rejected too, which testing the
   // vertices alone cannot do: a wall next to the box, beyond which the box pokes out.
-  thread_local std::vector<Vec3> polygon, clipped;
-  polygon.assign(vertices.begin(), vertices.end());
-  for (int i = 0; i < plane_count_ && !polygon.empty(); ++i) {
+  // Each plane adds at most one vertex: stack buffers for the usual small polygons.
+  constexpr size_t kStack = 32;
+  const size_t capacity = vertices.size() + static_cast<size_t>(plane_count_) + 1;
+  std::array<Vec3, kStack> stack_a, stack_b;
+  std::vector<Vec3> heap_a, heap_b;
+  Vec3* polygon = stack_a.data();
+  Vec3* clipped = stack_b.data();
+  if (capacity > kStack) {
+    heap_a.resize(capacity), heap_b.resize(capacity);
+    polygon = heap_a.data(), clipped = heap_b.data();
+  }
+  size_t count = vertices.size();
+  std::copy(vertices.begin(), vertices.end(), polygon);
+  for (int i = 0; i < plane_count_ && count > 0; ++i) {
     const Plane& p = planes_[i];
     const double limit = p.offset + pad_;
-    clipped.clear();
-    for (size_t j = 0; j < polygon.size(); ++j) {
+    size_t kept = 0;
+    for (size_t j = 0; j < count; ++j) {
       const Vec3& a = polygon[j];
-      const Vec3& b = polygon[(j + 1) % polygon.size()];
+      const Vec3& b = polygon[(j + 1) % count];
       const double da = p.normal.dot(a) - limit, db = p.normal.dot(b) - limit;
-      if (da <= 0) clipped.push_back(a);
-      if ((da < 0 && db > 0) || (da > 0 && db < 0)) clipped.push_back(a + (da / (da - db)) * (b - a));
+      if (da <= 0) clipped[kept++] = a;
+      if ((da < 0 && db > 0) || (da > 0 && db < 0)) clipped[kept++] = a + (da / (da - db)) * (b - a);
     }
     std::swap(polygon, clipped);
+    count = kept;
   }
-  return !polygon.empty();
+  return count > 0;
 }
 
 bool Shaft::may_meet(const Eigen::AlignedBox3d& box) const {

@@ -42,12 +42,16 @@ TEST(LocalPass, ToleranceZeroIsTheExactGatherWithNoBound) {
   // The plain gather over every face is the reference (more in occlusion_culling_test.cpp).
   const CornellSolution& s = cornell_solution();
   const LocalPass pass(s.scene, s.faces, ExactMethod::hemisphere);
+  LocalPassSettings no_culling;
+  no_culling.occlusion_culling = false;
+  const LocalPass naive(s.scene, s.faces, ExactMethod::hemisphere, no_culling);
   const HemisphereGatherer plain(s.scene, s.faces);
   int culled = 0;
   for (const SurfacePoint& p : surface_points(50, 1)) {
     const LocalPassResult r = pass.gather(p.x, p.n, 0);
     const Rgb reference = plain.gather(p.x, p.n).irradiance;
     EXPECT_LE((r.irradiance - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.maxCoeff());
+    EXPECT_LE((naive.gather(p.x, p.n, 0).irradiance - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.maxCoeff());
     EXPECT_EQ(r.bound, Rgb::Zero());
     EXPECT_LE(r.gathers, 1);
     culled += r.unoccluded > 0;
