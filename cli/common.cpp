@@ -49,4 +49,14 @@ void ProgressBar::finish() {
   drawn_ = false;
 }
 
+void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help) {
+  sub->add_option("-t,--tolerance", *tolerance, help)->check(CLI::Range(0.0, 0.99))->capture_default_str();
+}
+
+void add_samples_option(CLI::App* sub, int* samples, const std::string& unit) {
+  sub->add_option("--samples", *samples, "montecarlo: rays per " + unit + " (rounded up to a square)")
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+}
+
 }  // namespace rad::cli

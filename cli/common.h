@@ -1,5 +1,6 @@
 #pragma once
 /// Helpers shared by the subcommands.
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include <memory>
@@ -8,6 +9,11 @@
 #include "scene/scene.h"
 
 namespace rad::cli {
+
+/// The local pass's options, shared by render and probe: --tolerance (in [0, 0.99]) and
+/// --samples (Monte Carlo rays per `unit`), with their defaults shown.
+void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help);
+void add_samples_option(CLI::App* sub, int* samples, const std::string& unit);
 
 /// Loads and validates a scene, printing its warnings to stderr.
 Scene load_scene_reporting(const std::string& path);

@@ -121,14 +121,10 @@ void add_probe_command(CLI::App& app, Run& run) {
       ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo"}))
       ->capture_default_str();
   sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`: gather from its elements");
-  sub->add_option("-t,--tolerance", o->tolerance,
-                  "With --solution: stop once the certified error bound is at most this fraction of the value "
-                  "(0: exact); the bound column reports it")
-      ->check(CLI::Range(0.0, 0.99))
-      ->capture_default_str();
-  sub->add_option("--samples", o->samples, "montecarlo: rays per point (rounded up to a square)")
-      ->check(CLI::Range(1, 1 << 24))
-      ->capture_default_str();
+  add_tolerance_option(sub, &o->tolerance,
+                       "With --solution: stop once the certified error bound is at most this fraction of the "
+                       "value (0: exact); the bound column reports it");
+  add_samples_option(sub, &o->samples, "point");
   sub->add_option("-o,--output", o->output, "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
   sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   sub->callback([o, &run] { run = [o] { run_probe(*o); }; });

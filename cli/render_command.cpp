@@ -178,14 +178,10 @@ void add_render_command(CLI::App& app, Run& run) {
                   "facing: albedo x |cos| to the eye, to see the geometry")
       ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo", "patches", "albedo", "facing"}))
       ->capture_default_str();
-  sub->add_option("-t,--tolerance", o->tolerance,
-                  "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
-                  "fraction of its value (0: exact, every element gathered)")
-      ->check(CLI::Range(0.0, 0.99))
-      ->capture_default_str();
-  sub->add_option("--samples", o->samples, "montecarlo: rays per pixel (rounded up to a square)")
-      ->check(CLI::Range(1, 1 << 24))
-      ->capture_default_str();
+  add_tolerance_option(sub, &o->tolerance,
+                       "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
+                       "fraction of its value (0: exact)");
+  add_samples_option(sub, &o->samples, "pixel");
   sub->add_option("--stats", o->stats, "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
   sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`");
   sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");

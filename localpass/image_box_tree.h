@@ -21,43 +21,15 @@ class ImageBoxTree {
   /// Calls visit(item) for every item whose box intersects `query`.
   template <class Visit>
   void query(const ImageBox& query, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[stack[--top]];
-      if (!node.box.intersects(query)) continue;
-      if (node.left < 0) {
-        for (int i = node.first; i < node.first + node.count; ++i) {
-          if (boxes_[items_[i]].intersects(query)) visit(items_[i]);
-        }
-      } else {
-        stack[top++] = node.left;
-        stack[top++] = node.left + 1;
-      }
-    }
+    visit_until(query, [&](int item) {
+      visit(item);
+      return false;
+    });
   }
 
   /// Whether any item's box intersects `query`; stops at the first.
   bool any(const ImageBox& query) const {
-    if (nodes_.empty()) return false;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[stack[--top]];
-      if (!node.box.intersects(query)) continue;
-      if (node.left < 0) {
-        for (int i = node.first; i < node.first + node.count; ++i) {
-          if (boxes_[items_[i]].intersects(query)) return true;
-        }
-      } else {
-        stack[top++] = node.left;
-        stack[top++] = node.left + 1;
-      }
-    }
-    return false;
+    return visit_until(query, [](int) { return true; });
   }
 
   /// Calls visit(a, b) for every item a of this tree and b of `other` whose boxes intersect.
@@ -89,6 +61,29 @@ class ImageBoxTree {
   }
 
  private:
+  /// Calls stop(item) for the items whose box intersects `query` until it returns true;
+  /// returns whether it did.
+  template <class Stop>
+  bool visit_until(const ImageBox& query, Stop&& stop) const {
+    if (nodes_.empty()) return false;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (!node.box.intersects(query)) continue;
+      if (node.left < 0) {
+        for (int i = node.first; i < node.first + node.count; ++i) {
+          if (boxes_[items_[i]].intersects(query) && stop(items_[i])) return true;
+        }
+      } else {
+        stack[top++] = node.left;
+        stack[top++] = node.left + 1;
+      }
+    }
+    return false;
+  }
+
   struct Node {
     ImageBox box;
     int left = -1;  ///< Children at left and left + 1; -1 for a leaf.

@@ -184,12 +184,15 @@ TEST(VertexTracing, RegressionVertexOnTheTangentPlane) {
   EXPECT_TRUE(methods_agree({{{1, 0, 0}, {0.99, -1, 0}, {0.98, -1, 1}}}, Vec3(0.6, 0, 0.4), Vec3(0, -1, 0)));
 }
 
+// The Cornell box's left wall, twisted by 3.2 mm, as the loader splits it: two triangles.
+const std::vector<Vec3> kTwistedWallLower = {{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}};
+const std::vector<Vec3> kTwistedWallUpper = {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}};
+
 TEST(VertexTracing, RegressionTwistedWallFromTheCeiling) {
   // The Cornell box's split left wall seen from the ceiling: both triangles touch the tangent
   // plane. Nearly parallel features through one cone merged it with a far crossing (-0.022
   // for 0.239); merges now only take candidates near the cone.
-  EXPECT_TRUE(methods_agree({{{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}},
-                             {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}},
+  EXPECT_TRUE(methods_agree({kTwistedWallLower, kTwistedWallUpper},
                             Vec3(338.84, 548.8, 234.899), Vec3(0, -1, 0)));
 }
 
@@ -200,8 +203,7 @@ TEST(VertexTracing, RegressionCornellRightWallAndTwistedWallFromTheCeiling) {
   // landed 3e-6 (relative) beyond its end and passed an angular end test (0.387 for 0.496).
   // Crossings and edge spans are now tested against the edge's image segment.
   EXPECT_TRUE(methods_agree({{{0, 0, 559.2}, {0, 0, 0}, {0, 548.8, 0}, {0, 548.8, 559.2}},
-                             {{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}},
-                             {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}},
+                             kTwistedWallLower, kTwistedWallUpper},
                             Vec3(526.95159062917264, 548.79999999999995, 75.676727710292852), Vec3(0, -1, 0)));
 }
 
@@ -210,8 +212,7 @@ TEST(VertexTracing, RegressionTwistedWallSeenFromBehindNextToTheCeiling) {
   // equal-depth plane from the plane equations (cancellation ~1e-14) put its line on the wrong
   // side of a sliver at the horizon vertex, and the side was tested through q, not where the
   // boundaries were ordered (0.50372 for 0.50471).
-  EXPECT_TRUE(methods_agree({{{556, 548.8, 0}, {552.8, 0, 0}, {549.6, 0, 559.2}},
-                             {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}},
+  EXPECT_TRUE(methods_agree({kTwistedWallLower, kTwistedWallUpper},
                             Vec3(555.57165961082535, 548.79999999999995, 235.97582425503953), Vec3(0, -1, 0)));
 }
 
@@ -220,7 +221,7 @@ TEST(VertexTracing, RegressionBackWallAndTwistedWallFromTheFloor) {
   // plane from two nearby points, so the crossing that would merge the cones was lost (0.2449
   // for 0.2469). The cut edge now takes the square's exact plane.
   EXPECT_TRUE(methods_agree({{{549.6, 0, 559.2}, {0, 0, 559.2}, {0, 548.8, 559.2}, {556, 548.8, 559.2}},
-                             {{549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}},
+                             kTwistedWallUpper},
                             Vec3(549.64004334006722, 0, 552.20242632326551), Vec3(0, 1, 0)));
 }
 
