@@ -13,5 +13,8 @@ void add_info_command(CLI::App& app, Run& run);
 void add_render_command(CLI::App& app, Run& run);
 void add_solve_command(CLI::App& app, Run& run);
 void add_probe_command(CLI::App& app, Run& run);
+void add_sweep_command(CLI::App& app, Run& run);
+void add_compare_command(CLI::App& app, Run& run);
+void add_export_command(CLI::App& app, Run& run);
 
 }  // namespace rad::cli

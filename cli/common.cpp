@@ -6,7 +6,9 @@
 #include <chrono>
 #include <iostream>
 
+#include "scene/error.h"
 #include "scene/scene_loader.h"
+#include "viz/solution_io.h"
 
 namespace rad::cli {
 
@@ -14,6 +16,24 @@ Scene load_scene_reporting(const std::string& path) {
   Scene scene = load_scene(path);
   for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
   return scene;
+}
+
+Solution load_solution_for(const Scene& scene, const std::string& scene_path, const std::string& solution_path) {
+  Solution solution = read_solution(solution_path);
+  if (solution.scene_fingerprint != scene.fingerprint()) {
+    throw InputError(solution_path + ": solved for a different scene (" + solution.scene_path + "); solve " +
+                     scene_path + " again");
+  }
+  return solution;
+}
+
+CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const std::string& command, int width,
+                      int height) {
+  if (!scene.camera) throw InputError(scene_path + ": no \"camera\" block; " + command + " needs one");
+  CameraSpec spec = *scene.camera;
+  if (width > 0) spec.width = width;
+  if (height > 0) spec.height = height;
+  return spec;
 }
 
 ThreadLimit::ThreadLimit(int threads) {

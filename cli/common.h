@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "radiosity/solution.h"
+#include "scene/camera.h"
 #include "scene/scene.h"
 
 namespace rad::cli {
@@ -17,6 +19,15 @@ void add_samples_option(CLI::App* sub, int* samples, const std::string& unit);
 
 /// Loads and validates a scene, printing its warnings to stderr.
 Scene load_scene_reporting(const std::string& path);
+
+/// Reads a solution file and checks that it was solved for `scene` (loaded from
+/// `scene_path`). Throws InputError naming the file otherwise.
+Solution load_solution_for(const Scene& scene, const std::string& scene_path, const std::string& solution_path);
+
+/// The scene's camera with the image size overridden where `width`/`height` are positive.
+/// Throws InputError when the scene has no camera block.
+CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const std::string& command, int width,
+                      int height);
 
 /// Limits TBB to `threads` workers while alive (0: all cores).
 class ThreadLimit {

@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   rad::cli::add_solve_command(app, run);
   rad::cli::add_probe_command(app, run);
   rad::cli::add_render_command(app, run);
+  rad::cli::add_sweep_command(app, run);
+  rad::cli::add_compare_command(app, run);
+  rad::cli::add_export_command(app, run);
 
   try {
     app.parse(argc, argv);

@@ -53,11 +53,7 @@ void run_probe(const ProbeOptions& o) {
     throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
   }
   if (!o.solution.empty()) {
-    const Solution solution = read_solution(o.solution);
-    if (solution.scene_fingerprint != scene.fingerprint()) {
-      throw InputError(o.solution + ": solved for a different scene (" + solution.scene_path + "); solve " +
-                       o.scene + " again");
-    }
+    const Solution solution = load_solution_for(scene, o.scene, o.solution);
     if (o.method == "montecarlo") {
       monte_carlo.emplace(scene, faces_from_solution(scene, solution));
       gather = [&](size_t i) {

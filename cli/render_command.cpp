@@ -84,6 +84,34 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& im
   return out;
 }
 
+/// Per-pixel statistics for `export --stats`: faces projected and gathered (rays, for Monte
+/// Carlo), for the exact methods the certified bound on B (largest channel) and the bound
+/// relative to B, and 1 where a front-facing surface was gathered.
+ChannelImage pixel_channels(const LocalPassImage& image, bool certified) {
+  ChannelImage out{image.radiosity.width, image.radiosity.height, {}};
+  const size_t n = image.surface.size();
+  auto& projected = out.channels["projected"];
+  auto& emitting = out.channels["emitting"];
+  auto& surface = out.channels["surface"];
+  for (auto* c : {&projected, &emitting, &surface}) c->resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    projected[i] = static_cast<float>(image.projected[i]);
+    emitting[i] = static_cast<float>(image.emitting[i]);
+    surface[i] = image.surface[i] ? 1.0f : 0.0f;
+  }
+  if (!certified) return out;
+  auto& bound = out.channels["bound"];
+  auto& relative = out.channels["relative_bound"];
+  bound.resize(n);
+  relative.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double b = image.bound.pixels[i].maxCoeff(), value = image.radiosity.pixels[i].maxCoeff();
+    bound[i] = static_cast<float>(b);
+    relative[i] = value > 0 ? static_cast<float>(b / value) : 0.0f;
+  }
+  return out;
+}
+
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
@@ -93,20 +121,14 @@ void run_render(const RenderOptions& o) {
     throw InputError("--method " + o.method + " needs --solution (a .vtp written by `radiosity solve`)");
   }
   const Scene scene = load_scene_reporting(o.scene);
-  if (!scene.camera) throw InputError(o.scene + ": no \"camera\" block; render needs one");
-  CameraSpec spec = *scene.camera;
-  if (o.width > 0) spec.width = o.width;
-  if (o.height > 0) spec.height = o.height;
+  const CameraSpec spec = camera_for(scene, o.scene, "render", o.width, o.height);
   const Camera camera(spec);
 
   Image image;
   nlohmann::json stats;
+  ChannelImage pixel_stats;  // local methods: per-pixel statistics, beside the stats JSON
   if (needs_solution) {
-    const Solution solution = read_solution(o.solution);
-    if (solution.scene_fingerprint != scene.fingerprint()) {
-      throw InputError(o.solution + ": solved for a different scene (" + solution.scene_path +
-                       "); solve " + o.scene + " again");
-    }
+    const Solution solution = load_solution_for(scene, o.scene, o.solution);
     if (local) {
       const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
       const RayCaster caster(scene);
@@ -126,6 +148,7 @@ void run_render(const RenderOptions& o) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       stats = local_pass_stats(o, result, static_cast<int>(faces.size()),
                                pass ? static_cast<int>(pass->octree().leaves().size()) : 0, seconds);
+      pixel_stats = pixel_channels(result, o.method != "montecarlo");
     } else {
       image = render_patches(scene, solution, camera, !o.no_ambient);
     }
@@ -145,8 +168,11 @@ void run_render(const RenderOptions& o) {
   if (local) {
     const std::filesystem::path path = o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
                                                        : std::filesystem::path(o.stats);
+    const std::filesystem::path pixels = std::filesystem::path(path).replace_extension().replace_extension(".pixels.exr");
+    write_exr_channels(pixels, pixel_stats);
+    stats["pixels_file"] = pixels.filename().string();
     write_text_file(path, [&](std::ostream& file) { file << stats.dump(2) << "\n"; });
-    written += ", " + path.string();
+    written += ", " + path.string() + ", " + pixels.string();
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,23 +18,19 @@
 
 namespace rad {
 
-void write_exr(const std::filesystem::path& file, const Image& image) {
-  const size_t n = image.pixels.size();
-  std::vector<float> planes[3];
-  for (int c = 0; c < 3; ++c) {
-    planes[c].resize(n);
-    for (size_t i = 0; i < n; ++i) planes[c][i] = static_cast<float>(image.pixels[i][c]);
-  }
+void write_exr_channels(const std::filesystem::path& file, const ChannelImage& image) {
+  const size_t n = static_cast<size_t>(image.width) * image.height;
   AtomicFile out(file);
   try {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
     Imf::FrameBuffer frame;
-    const char* names[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; ++c) {
-      header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[c].data()),
-                                        sizeof(float), sizeof(float) * image.width));
+    for (const auto& [name, values] : image.channels) {
+      if (values.size() != n) throw Error("channel " + name + " has the wrong size");
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      // OpenEXR only reads from the frame buffer; the cast drops const for its interface.
+      frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
+                                    sizeof(float), sizeof(float) * image.width));
     }
     Imf::OutputFile exr(out.temp_path().c_str(), header);
     exr.setFrameBuffer(frame);
@@ -45,33 +41,54 @@ void write_exr(const std::filesystem::path& file, const Image& image) {
   out.commit();
 }
 
-Image read_exr(const std::filesystem::path& file) {
+ChannelImage read_exr_channels(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": no such image file");
   try {
     Imf::InputFile exr(file.c_str());
     const Imath::Box2i window = exr.header().dataWindow();
-    const int width = window.max.x - window.min.x + 1;
-    const int height = window.max.y - window.min.y + 1;
-    const size_t n = static_cast<size_t>(width) * height;
-    std::vector<float> planes[3];
+    ChannelImage image;
+    image.width = window.max.x - window.min.x + 1;
+    image.height = window.max.y - window.min.y + 1;
+    const size_t n = static_cast<size_t>(image.width) * image.height;
     Imf::FrameBuffer frame;
-    const char* names[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; ++c) {
-      planes[c].assign(n, 0.0f);
+    for (auto it = exr.header().channels().begin(); it != exr.header().channels().end(); ++it) {
+      std::vector<float>& values = image.channels[it.name()];
+      values.assign(n, 0.0f);
       // The slice base is shifted so that pixel (min.x, min.y) lands at index 0.
-      char* base = reinterpret_cast<char*>(planes[c].data()) -
-                   (static_cast<ptrdiff_t>(window.min.x) + static_cast<ptrdiff_t>(window.min.y) * width) *
+      char* base = reinterpret_cast<char*>(values.data()) -
+                   (static_cast<ptrdiff_t>(window.min.x) + static_cast<ptrdiff_t>(window.min.y) * image.width) *
                        static_cast<ptrdiff_t>(sizeof(float));
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * width, 1, 1, 0.0));
+      frame.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * image.width, 1, 1, 0.0));
     }
     exr.setFrameBuffer(frame);
     exr.readPixels(window.min.y, window.max.y);
-    Image image(width, height);
-    for (size_t i = 0; i < n; ++i) image.pixels[i] = Rgb(planes[0][i], planes[1][i], planes[2][i]);
     return image;
   } catch (const std::exception& e) {
     throw InputError(file.string() + ": cannot read OpenEXR: " + e.what());
   }
+}
+
+void write_exr(const std::filesystem::path& file, const Image& image) {
+  ChannelImage channels{image.width, image.height, {}};
+  const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float>& plane = channels.channels[names[c]];
+    plane.resize(image.pixels.size());
+    for (size_t i = 0; i < plane.size(); ++i) plane[i] = static_cast<float>(image.pixels[i][c]);
+  }
+  write_exr_channels(file, channels);
+}
+
+Image read_exr(const std::filesystem::path& file) {
+  const ChannelImage channels = read_exr_channels(file);
+  Image image(channels.width, channels.height);
+  const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    const auto it = channels.channels.find(names[c]);
+    if (it == channels.channels.end()) continue;  // a missing channel reads as 0
+    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i][c] = it->second[i];
+  }
+  return image;
 }
 
 unsigned char to_srgb8(double linear, double exposure) {

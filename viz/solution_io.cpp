@@ -20,6 +20,7 @@
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
 #include "viz/atomic_file.h"
+#include "viz/patch_mesh_polydata.h"
 
 // JSON for Eigen's RGB triples, and field lists for the settings and statistics: one list
 // serves both writing and reading.
@@ -76,10 +77,18 @@ void add_corners(vtkFieldData* field, const char* count_name, const char* xyz_na
 
 }  // namespace
 
-void write_solution(const std::filesystem::path& file, const Solution& solution, const Scene& scene) {
+namespace {
+
+/// The patch mesh with its cell and point data, and the element behind each cell.
+struct PatchMeshData {
+  vtkSmartPointer<vtkPolyData> poly;
+  std::vector<int> cell_elements;
+};
+
+PatchMeshData build_patch_mesh(const Solution& solution, const Scene& scene) {
   const double tolerance = 1e-9 * scene.bounds().diagonal();
   const ElementMesh mesh(solution, tolerance);
-  vtkNew<vtkPolyData> poly;
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
 
   // Points (double) and cells.
   vtkNew<vtkPoints> points;
@@ -102,7 +111,7 @@ void write_solution(const std::filesystem::path& file, const Solution& solution,
   auto reflectance = doubles("reflectance", 3), area = doubles("area", 1);
   auto parent = ints("parent_polygon"), patch = ints("patch"), level = ints("level");
   std::vector<Rgb> face_rho;
-  std::vector<const std::vector<Vec3>*> element_corners;
+  std::vector<int> cell_elements;
   for (int f = 0; f < mesh.face_count(); ++f) {
     const Element& e = solution.elements[mesh.element(f)];
     const Material& m = scene.materials[scene.polygons[e.polygon].material];
@@ -114,7 +123,7 @@ void write_solution(const std::filesystem::path& file, const Solution& solution,
     patch->InsertNextValue(e.patch);
     level->InsertNextValue(e.level);
     face_rho.push_back(m.reflectance);
-    element_corners.push_back(&e.corners);
+    cell_elements.push_back(mesh.element(f));
   }
   for (auto* a : std::initializer_list<vtkAbstractArray*>{radiosity, emission, reflectance, area, parent, patch, level}) {
     poly->GetCellData()->AddArray(a);
@@ -125,7 +134,20 @@ void write_solution(const std::filesystem::path& file, const Solution& solution,
   auto vertex_radiosity = doubles("vertex_radiosity", 3);
   for (const Rgb& v : mesh.vertex_radiosity(solution, face_rho, false)) add_rgb(vertex_radiosity, v);
   poly->GetPointData()->AddArray(vertex_radiosity);
+  return {poly, std::move(cell_elements)};
+}
 
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> patch_mesh_polydata(const Solution& solution, const Scene& scene) {
+  return build_patch_mesh(solution, scene).poly;
+}
+
+void write_solution(const std::filesystem::path& file, const Solution& solution, const Scene& scene) {
+  const PatchMeshData mesh = build_patch_mesh(solution, scene);
+  vtkPolyData* poly = mesh.poly;
+  std::vector<const std::vector<Vec3>*> element_corners;
+  for (const int e : mesh.cell_elements) element_corners.push_back(&solution.elements[e].corners);
   // Field data: everything else needed to use the solution without solving again.
   vtkFieldData* field = poly->GetFieldData();
   add_string(field, "scene_path", solution.scene_path);

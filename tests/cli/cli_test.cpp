@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -63,7 +64,8 @@ Result run(const std::string& args) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* args : {"--help", "info --help", "solve --help", "probe --help", "render --help"}) {
+  for (const char* args : {"--help", "info --help", "solve --help", "probe --help", "render --help", "sweep --help",
+                           "compare --help", "export --help"}) {
     const Result r = run(args);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_NE(r.out.find("Usage:"), std::string::npos) << args << "\n" << r.out;
@@ -72,7 +74,9 @@ TEST(Cli, EverySubcommandHasHelp) {
 
 TEST(Cli, UsageErrorsExitTwo) {
   for (const char* args : {"", "info", "render scene.json", "info a.json --no-such-option",
-                           "render x.json --method nope -o y.exr", "frobnicate"}) {
+                           "render x.json --method nope -o y.exr", "frobnicate", "compare a.exr",
+                           "sweep x.json -s s.vtp -o d --tolerances 0,1.5", "sweep x.json -s s.vtp -o d --methods nope",
+                           "sweep x.json -s s.vtp -o d --samples 0", "export x.json -o d"}) {
     const Result r = run(args);
     EXPECT_EQ(r.exit_code, 2) << "'" << args << "'\n" << r.err;
     EXPECT_NE(r.err.find("--help"), std::string::npos) << r.err;
@@ -284,6 +288,66 @@ TEST(Cli, LocalPassRenderWritesImageStatsAndProbeFillsTheBound) {
     EXPECT_GE(b[i][9], 0.0);
     for (int c = 6; c < 9; ++c) EXPECT_LE(std::abs(b[i][c] - e[i][c]), b[i][9] * (1 + 1e-9) + 1e-12) << "row " << i;
   }
+}
+
+TEST(Cli, CompareReportsErrorsAndRefusesMissingOrMismatchedImages) {
+  const fs::path dir = scratch();
+  rad::Image a(4, 2), b(4, 2), small(2, 2);
+  for (auto& p : a.pixels) p = rad::Rgb(1, 1, 1);
+  for (auto& p : b.pixels) p = rad::Rgb(1, 1, 1);
+  a.pixels[0] = rad::Rgb(1.5, 1, 1);  // one pixel 50% off: max 0.5, mean 0.5 / 8
+  rad::write_exr(dir / "a.exr", a);
+  rad::write_exr(dir / "b.exr", b);
+  rad::write_exr(dir / "small.exr", small);
+  Result r = run("compare " + quoted(dir / "a.exr") + " " + quoted(dir / "b.exr") + " -o " + quoted(dir / "map.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("max relative error: 0.5\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mean relative error: 0.0625\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pixels compared: 8 "), std::string::npos) << r.out;
+  EXPECT_EQ(rad::read_exr(dir / "map.exr").at(0, 0).x(), 0.5f);
+  EXPECT_TRUE(fs::exists(dir / "map.png"));
+
+  r = run("compare " + quoted(dir / "missing.exr") + " " + quoted(dir / "b.exr"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << r.err;
+  r = run("compare " + quoted(dir / "small.exr") + " " + quoted(dir / "b.exr") + " -o " + quoted(dir / "m2.exr"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("small.exr: 2x2 pixels, but the reference"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "m2.exr"));
+}
+
+TEST(Cli, SweepAndExportWriteTheirFiles) {
+  const fs::path dir = scratch();
+  const std::string scene = quoted(kRoot / "data/light-over-floor/scene.json");
+  Result r = run("solve " + scene + " --patch-size 0.25 -o " + quoted(dir / "s.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run("sweep " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "sweep") +
+          " --width 8 --height 6 --tolerances 0,0.3 --methods hemisphere,montecarlo --samples 4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("sweep: hemisphere T=0.3: "), std::string::npos) << r.err;
+  const std::string csv = slurp(dir / "sweep/results.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4) << csv;  // header + 3 rows
+  for (const char* file : {"reference.exr", "error_vs_tolerance.png", "time_vs_tolerance.png", "error_vs_time.png",
+                           "images/hemisphere_T0.3.exr", "error_maps/montecarlo_N4.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "sweep" / file)) << file;
+  }
+
+  r = run("render " + scene + " --solution " + quoted(dir / "s.vtp") + " --width 8 --height 6 -o " +
+          quoted(dir / "lp.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run("export " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "export") + " --stats " +
+          quoted(dir / "lp.stats.json") + " --width 64 --height 48");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* file : {"patch_mesh.vtp", "octree.vtu", "pixel_stats.vti", "patch_mesh.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "export" / file)) << file;
+  }
+  // A stats file that is not one names itself, and nothing is written.
+  std::ofstream(dir / "bad.json") << "{\"seconds\": 1}";
+  r = run("export " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "export2") + " --stats " +
+          quoted(dir / "bad.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.json: no \"pixels_file\""), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "export2"));
 }
 
 }  // namespace

@@ -1,0 +1,101 @@
+// `radiosity export SCENE --solution S.vtp -o DIR [--stats IMAGE.stats.json]`: files for
+// ParaView (the patch mesh, the octree, a render's per-pixel statistics) and a picture of the
+// patch mesh from the scene camera.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "localpass/emitting_faces.h"
+#include "localpass/local_pass.h"
+#include "octree/octree.h"
+#include "scene/error.h"
+#include "viz/image_io.h"
+#include "viz/solution_io.h"
+#include "viz/vtk_export.h"
+
+namespace rad::cli {
+namespace {
+
+struct ExportOptions {
+  std::string scene, solution, output, stats;
+  int width = 0, height = 0;
+  double exposure = 0;
+  bool no_png = false;
+};
+
+/// The per-pixel file a render wrote beside its stats JSON ("pixels_file").
+std::filesystem::path pixels_file_of(const std::string& stats_path) {
+  std::ifstream in(stats_path);
+  if (!in) throw InputError(stats_path + ": cannot open the stats file");
+  nlohmann::json stats;
+  try {
+    in >> stats;
+  } catch (const std::exception& e) {
+    throw InputError(stats_path + ": not a stats JSON from `radiosity render`: " + e.what());
+  }
+  if (!stats.is_object() || !stats.contains("pixels_file") || !stats["pixels_file"].is_string()) {
+    throw InputError(stats_path + ": no \"pixels_file\"; render the image again with this version");
+  }
+  return std::filesystem::path(stats_path).parent_path() / stats["pixels_file"].get<std::string>();
+}
+
+void run_export(const ExportOptions& o) {
+  const Scene scene = load_scene_reporting(o.scene);
+  const Solution solution = load_solution_for(scene, o.scene, o.solution);
+  const std::filesystem::path folder(o.output);
+  std::vector<std::string> written;
+
+  // Read the statistics first: a bad --stats file fails before anything is written.
+  ChannelImage pixels;
+  if (!o.stats.empty()) pixels = read_exr_channels(pixels_file_of(o.stats));
+
+  write_solution(folder / "patch_mesh.vtp", solution, scene);
+  written.push_back("patch_mesh.vtp");
+
+  const Octree octree(octree_items(scene, faces_from_solution(scene, solution)));
+  write_octree_vtu(folder / "octree.vtu", octree);
+  written.push_back("octree.vtu (" + std::to_string(octree.leaves().size()) + " leaves)");
+
+  if (!o.stats.empty()) {
+    write_pixel_image_vti(folder / "pixel_stats.vti", pixels.width, pixels.height, pixels.channels);
+    written.push_back("pixel_stats.vti");
+  }
+  if (!o.no_png) {
+    write_patch_mesh_png(folder / "patch_mesh.png", solution, scene, camera_for(scene, o.scene, "export", o.width, o.height),
+                         o.exposure);
+    written.push_back("patch_mesh.png");
+  }
+  std::cerr << "export: wrote to " << folder.string() << "/:";
+  for (const std::string& w : written) std::cerr << " " << w << (&w == &written.back() ? "" : ",");
+  std::cerr << "\n";
+}
+
+}  // namespace
+
+void add_export_command(CLI::App& app, Run& run) {
+  auto o = std::make_shared<ExportOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "export",
+      "VTK XML files for ParaView: the patch mesh (patch_mesh.vtp: radiosity, emission, reflectance, refinement "
+      "level), the octree (octree.vtu: hexahedra with bmax, patch_count, energy), with --stats a render's "
+      "per-pixel statistics (pixel_stats.vti); and patch_mesh.png, the mesh coloured by radiosity from the scene "
+      "camera.");
+  sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`")->required();
+  sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
+  sub->add_option("--stats", o->stats,
+                  "Stats JSON written by `radiosity render` (IMAGE.stats.json): export its per-pixel faces "
+                  "projected and bound as pixel_stats.vti");
+  sub->add_option("--width", o->width, "patch_mesh.png width (default: the camera's)")->check(CLI::Range(1, 1 << 14));
+  sub->add_option("--height", o->height, "patch_mesh.png height (default: the camera's)")->check(CLI::Range(1, 1 << 14));
+  sub->add_option("--exposure", o->exposure, "patch_mesh.png exposure in stops (linear * 2^exposure)")
+      ->capture_default_str();
+  sub->add_flag("--no-png", o->no_png, "Do not draw patch_mesh.png (no X display or Xvfb needed)");
+  sub->callback([o, &run] { run = [o] { run_export(*o); }; });
+}
+
+}  // namespace rad::cli

@@ -1,0 +1,86 @@
+// `radiosity sweep SCENE --solution S.vtp -o DIR [--tolerances ...] [--methods ...] [--samples ...]`:
+// the accuracy-versus-tolerance experiment (viz/sweep.h): results.csv, images, error maps, charts.
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "localpass/emitting_faces.h"
+#include "viz/sweep.h"
+
+namespace rad::cli {
+namespace {
+
+struct SweepOptions {
+  std::string scene, solution, output;
+  SweepSettings settings;
+  int width = 0, height = 0;
+  int threads = 0;
+};
+
+void run_sweep_command(const SweepOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  const ThreadLimit limit(o.threads);
+  const Scene scene = load_scene_reporting(o.scene);
+  const Camera camera(camera_for(scene, o.scene, "sweep", o.width, o.height));
+  const Solution solution = load_solution_for(scene, o.scene, o.solution);
+  const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
+  std::cerr << "sweep: " << camera.width() << "x" << camera.height() << ", " << faces.size()
+            << " elements; the reference is " << o.settings.reference_method << " at tolerance 0\n";
+
+  ProgressBar bar("sweep");
+  const auto progress = [&](const std::string& what, double done) {
+    bar.update(done, what + " " + std::to_string(static_cast<int>(100 * done)) + "%");
+  };
+  const auto on_row = [&](const SweepRow& row) {
+    bar.finish();
+    std::cerr << "sweep: " << row.label() << ": " << row.seconds << " s, max error " << row.error.max << ", RMS "
+              << row.error.rms;
+    if (row.exact()) std::cerr << ", bound violations " << row.violations;
+    std::cerr << "\n";
+  };
+  const std::vector<SweepRow> rows = run_sweep(scene, faces, camera, o.settings, o.output, progress, on_row);
+  bar.finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cerr << "sweep: " << rows.size() << " settings in " << seconds << " s; wrote " << o.output
+            << "/results.csv, error_vs_tolerance.png, time_vs_tolerance.png, error_vs_time.png, reference.exr, "
+               "images/, error_maps/\n";
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, Run& run) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "sweep",
+      "Accuracy against tolerance: render the exact reference once, then each method at each setting; write "
+      "results.csv, the images, error maps and charts (PNG) to a folder.");
+  sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
+  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`")->required();
+  sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
+  sub->add_option("--methods", o->settings.methods, "Methods to run: hemisphere, vertex, montecarlo")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo"}))
+      ->capture_default_str();
+  sub->add_option("--tolerances", o->settings.tolerances,
+                  "hemisphere/vertex: tolerances to run, each in [0, 0.99] (0: exact)")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  sub->add_option("--samples", o->settings.samples, "montecarlo: rays per pixel to run, each >= 1")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
+  sub->add_option("--reference-method", o->settings.reference_method,
+                  "Exact method whose tolerance-0 image is the reference")
+      ->check(CLI::IsMember({"hemisphere", "vertex"}))
+      ->capture_default_str();
+  sub->add_option("--width", o->width, "Image width in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
+  sub->add_option("--height", o->height, "Image height in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
+  sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sub->callback([o, &run] { run = [o] { run_sweep_command(*o); }; });
+}
+
+}  // namespace rad::cli

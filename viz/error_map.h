@@ -1,0 +1,38 @@
+#pragma once
+/// Per-pixel relative error of an image against a reference, its statistics, and the error map
+/// as files: OpenEXR (the error in R, G and B) and a PNG heat map with a colour bar.
+#include <filesystem>
+#include <vector>
+
+#include "localpass/image.h"
+
+namespace rad {
+
+/// Statistics of the relative error over the compared pixels.
+struct ErrorStats {
+  double max = 0, mean = 0, rms = 0;
+  size_t pixels = 0;   ///< Pixels compared: those where the reference is positive.
+  size_t skipped = 0;  ///< Pixels not compared: the reference is 0 (background, back faces).
+};
+
+/// Per pixel, |image - reference| / reference on the brightest channel:
+///   e = max_c |I_c - R_c| / max_c R_c,
+/// the measure every table of this project uses. Pixels where max_c R_c <= 0 are not compared
+/// (NaN in `relative`).
+struct ErrorMap {
+  int width = 0, height = 0;
+  std::vector<double> relative;  ///< Row by row from the top.
+  ErrorStats stats;
+};
+
+/// Throws Error when the sizes differ. A NaN in `image` where the reference is positive counts
+/// as an infinite error (so it shows in `max`).
+ErrorMap relative_error_map(const Image& image, const Image& reference);
+
+/// Writes `exr` (relative error in all three channels, 0 where not compared) and, unless `png`
+/// is empty, a heat map PNG from 0 to `max_value` (<= 0: the map's own maximum) with a colour
+/// bar; `title` heads the PNG. Both atomically. Throws Error.
+void write_error_map(const std::filesystem::path& exr, const std::filesystem::path& png, const ErrorMap& map,
+                     const std::string& title, double max_value = 0);
+
+}  // namespace rad

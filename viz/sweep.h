@@ -1,0 +1,71 @@
+#pragma once
+/// The accuracy-versus-tolerance experiment (paper 004 §5, Fig. 7): render the exact reference
+/// once, then every method at every setting; compare each image with the reference; write the
+/// table (results.csv), the images, their error maps and the charts.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "localpass/emitting_faces.h"
+#include "localpass/local_pass_render.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "viz/error_map.h"
+
+namespace rad {
+
+struct SweepSettings {
+  std::vector<std::string> methods{"hemisphere", "montecarlo"};  ///< hemisphere, vertex, montecarlo
+  std::vector<double> tolerances{0, 0.05, 0.2};  ///< for hemisphere and vertex
+  std::vector<int> samples{16, 64, 256, 1024};   ///< for montecarlo
+  /// The reference is the tolerance-0 image of this exact method. A tolerance-0 row of the same
+  /// method is the reference render itself (timed once, error 0 by construction).
+  std::string reference_method = "hemisphere";
+};
+
+/// One row of results.csv.
+struct SweepRow {
+  std::string method;
+  double tolerance = 0;  ///< exact methods
+  int samples = 0;       ///< montecarlo
+  double seconds = 0;    ///< the render alone (faces and octree set up before the clock)
+  double projected_mean = 0, projected_max = 0;  ///< faces projected per pixel; 0 for montecarlo
+  ErrorStats error;      ///< relative to the reference (error_map.h)
+  /// Pixels where |B - B_ref| > bound on some channel (beyond 1e-12 relative rounding slack);
+  /// -1 for montecarlo, which has no bound.
+  long violations = -1;
+  double error_over_bound_max = 0;  ///< max over pixels of |B - B_ref| / bound, where bound > 0
+  std::string image;     ///< file name of its image, relative to the output folder
+
+  bool exact() const { return method != "montecarlo"; }
+  std::string label() const;  ///< "hemisphere T=0.05", "montecarlo N=64"
+  std::string slug() const;   ///< "hemisphere_T0.05", "montecarlo_N64"
+};
+
+/// Per-pixel comparison of a local-pass image with the reference: the relative error map and
+/// the bound check (SweepRow's error, violations, error_over_bound_max).
+void compare_to_reference(const LocalPassImage& image, const LocalPassImage& reference, SweepRow& row,
+                          ErrorMap* map = nullptr);
+
+/// Reports progress: `what` is being rendered, `done` of it in [0, 1].
+using SweepProgress = std::function<void(const std::string& what, double done)>;
+
+/// Called after each row is measured and its image written.
+using SweepRowDone = std::function<void(const SweepRow& row)>;
+
+/// Runs the sweep and writes into `folder`: results.csv; reference.exr/.png; images/<slug>.exr
+/// and .png; error_maps/<slug>.exr and .png (heat maps on one scale, the largest error of the
+/// sweep's approximate rows); charts error_vs_tolerance.png, time_vs_tolerance.png and
+/// error_vs_time.png. Returns the rows in the order of results.csv. Throws Error.
+std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces, const Camera& camera,
+                                const SweepSettings& settings, const std::filesystem::path& folder,
+                                const SweepProgress& progress = {}, const SweepRowDone& row_done = {});
+
+/// results.csv: a header and one line per row (columns documented in the README).
+void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepRow>& rows);
+
+/// The three charts, as PNG files in `folder`.
+void write_sweep_charts(const std::filesystem::path& folder, const std::vector<SweepRow>& rows);
+
+}  // namespace rad
