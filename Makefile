@@ -8,7 +8,7 @@ MAKEFLAGS += --no-print-directory
 DEMO_OUT ?= out/cornell-box
 RADIOSITY = $(BUILD_DIR)/cli/radiosity
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test bench results stability clean
 
 all: build
 
@@ -38,6 +38,31 @@ test: build
 
 bench: build
 	@bash bench/run_all.sh $(BUILD_DIR)
+
+# The README's Results section: the sweep on the Cornell box at 256x256 (the bench's uniform
+# 2,948-element solution), its error maps and charts, the exports, and the figures it shows.
+RESULTS_OUT ?= out/results
+CORNELL = data/cornell-box/scene.json
+results: build
+	@mkdir -p $(RESULTS_OUT) docs/images/results
+	$(RADIOSITY) solve $(CORNELL) --patch-size 0.07 --refine-threshold 0 -o $(RESULTS_OUT)/solution.vtp
+	$(RADIOSITY) sweep $(CORNELL) --solution $(RESULTS_OUT)/solution.vtp --width 256 --height 256 \
+	  -o $(RESULTS_OUT)/sweep
+	$(RADIOSITY) compare $(RESULTS_OUT)/sweep/images/hemisphere_T0.2.exr $(RESULTS_OUT)/sweep/reference.exr \
+	  -o $(RESULTS_OUT)/error_map_hemisphere_T0.2.exr --max 0.25
+	$(RADIOSITY) compare $(RESULTS_OUT)/sweep/images/montecarlo_N1024.exr $(RESULTS_OUT)/sweep/reference.exr \
+	  -o $(RESULTS_OUT)/error_map_montecarlo_N1024.exr --max 0.25
+	$(RADIOSITY) export $(CORNELL) --solution $(RESULTS_OUT)/solution.vtp -o $(RESULTS_OUT)/export
+	cp $(RESULTS_OUT)/sweep/reference.png $(RESULTS_OUT)/sweep/results.csv $(RESULTS_OUT)/sweep/error_vs_time.png \
+	  $(RESULTS_OUT)/sweep/error_vs_tolerance.png $(RESULTS_OUT)/sweep/time_vs_tolerance.png \
+	  $(RESULTS_OUT)/export/patch_mesh.png docs/images/results/
+	cp $(RESULTS_OUT)/error_map_hemisphere_T0.2.png $(RESULTS_OUT)/error_map_montecarlo_N1024.png docs/images/results/
+
+# The stability report: the degenerate scene families through both exact gatherers and Monte
+# Carlo (bench/results/stability.md).
+stability: build
+	@bash bench/stability.sh $(BUILD_DIR)
+	@cat bench/results/stability.md
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -99,3 +99,4 @@ local_pass_table() {
 }
 local_pass_table "${LOCAL_PASS_SIZE:-64}" 1 local_pass.md
 if [ "${LOCAL_PASS_256:-0}" = 1 ]; then local_pass_table 256 0 local_pass_256.md; fi
+bash bench/stability.sh "$build"

@@ -155,11 +155,16 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<EmittingFa
     }
   }
 
-  // Error maps on one colour scale: the largest error of the sweep.
-  double top = 0;
+  // Error maps on one colour scale: the largest error of the exact rows (Monte Carlo's few
+  // samples can be off by 10x and more, which would leave the exact maps one flat colour);
+  // Monte Carlo maps clamp there. With no exact row, the largest error of all.
+  double top = 0, top_all = 0;
   for (const SweepRow& row : rows) {
-    if (std::isfinite(row.error.max)) top = std::max(top, row.error.max);
+    if (!std::isfinite(row.error.max)) continue;
+    top_all = std::max(top_all, row.error.max);
+    if (row.exact()) top = std::max(top, row.error.max);
   }
+  if (!(top > 0)) top = top_all;
   for (size_t i = 0; i < rows.size(); ++i) {
     const std::filesystem::path exr = folder / "error_maps" / (rows[i].slug() + ".exr");
     write_error_map(exr, std::filesystem::path(exr).replace_extension(".png"), maps[i],

@@ -55,8 +55,8 @@ using SweepProgress = std::function<void(const std::string& what, double done)>;
 using SweepRowDone = std::function<void(const SweepRow& row)>;
 
 /// Runs the sweep and writes into `folder`: results.csv; reference.exr/.png; images/<slug>.exr
-/// and .png; error_maps/<slug>.exr and .png (heat maps on one scale, the largest error of the
-/// sweep's approximate rows); charts error_vs_tolerance.png, time_vs_tolerance.png and
+/// and .png; error_maps/<slug>.exr and .png (heat maps on one scale: the largest error of the
+/// exact rows, where Monte Carlo's maps clamp); charts error_vs_tolerance.png, time_vs_tolerance.png and
 /// error_vs_time.png. Returns the rows in the order of results.csv. Throws Error.
 std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces, const Camera& camera,
                                 const SweepSettings& settings, const std::filesystem::path& folder,
