@@ -208,12 +208,19 @@ void write_sweep_charts(const std::filesystem::path& folder, const std::vector<S
   };
   const auto tolerance = [](const SweepRow& r) { return r.tolerance; };
 
-  LineChart error_chart;
-  error_chart.title = "Relative error against tolerance (reference: tolerance 0)";
-  error_chart.legend = LineChart::Corner::bottom_right;
-  error_chart.x_label = "tolerance T";
-  error_chart.y_label = "relative error";
-  error_chart.log_x = error_chart.log_y = true;
+  // All three charts have log axes.
+  const auto log_log = [](std::string title, std::string x_label, std::string y_label, LineChart::Corner legend) {
+    LineChart chart;
+    chart.title = std::move(title);
+    chart.x_label = std::move(x_label);
+    chart.y_label = std::move(y_label);
+    chart.log_x = chart.log_y = true;
+    chart.legend = legend;
+    return chart;
+  };
+
+  LineChart error_chart = log_log("Relative error against tolerance (reference: tolerance 0)", "tolerance T",
+                                  "relative error", LineChart::Corner::bottom_right);
   error_chart.series = series_by_method(true, " max", tolerance, [](const SweepRow& r) { return r.error.max; });
   for (ChartSeries& s : series_by_method(true, " RMS", tolerance, [](const SweepRow& r) { return r.error.rms; })) {
     error_chart.series.push_back(std::move(s));
@@ -230,21 +237,13 @@ void write_sweep_charts(const std::filesystem::path& folder, const std::vector<S
   error_chart.series.push_back(std::move(promise));
   write_chart_png(folder / "error_vs_tolerance.png", error_chart);
 
-  LineChart time_chart;
-  time_chart.title = "Render time against tolerance";
-  time_chart.x_label = "tolerance T";
-  time_chart.y_label = "seconds";
-  time_chart.log_x = time_chart.log_y = true;
-  time_chart.legend = LineChart::Corner::top_right;
+  LineChart time_chart =
+      log_log("Render time against tolerance", "tolerance T", "seconds", LineChart::Corner::top_right);
   time_chart.series = series_by_method(true, "", tolerance, [](const SweepRow& r) { return r.seconds; });
   write_chart_png(folder / "time_vs_tolerance.png", time_chart);
 
-  LineChart tradeoff;
-  tradeoff.title = "RMS error against render time (all methods)";
-  tradeoff.x_label = "seconds";
-  tradeoff.y_label = "RMS relative error";
-  tradeoff.log_x = tradeoff.log_y = true;
-  tradeoff.legend = LineChart::Corner::bottom_left;
+  LineChart tradeoff = log_log("RMS error against render time (all methods)", "seconds", "RMS relative error",
+                               LineChart::Corner::bottom_left);
   tradeoff.series = series_by_method(false, "", [](const SweepRow& r) { return r.seconds; },
                                      [](const SweepRow& r) { return r.error.rms; });
   write_chart_png(folder / "error_vs_time.png", tradeoff);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "scene/error.h"
+#include "tests/scratch_dir.h"
 #include "tests/viz/png_inspect.h"
 #include "viz/charts.h"
 #include "viz/error_map.h"
@@ -15,13 +16,6 @@ namespace rad {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rad_viz_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 TEST(ErrorMap, RelativeErrorOnTheBrightestChannelByHand) {
   Image reference(2, 2), image(2, 2);
@@ -50,7 +44,7 @@ TEST(ErrorMap, NanInTheImageIsAnInfiniteErrorAndSizesMustMatch) {
 }
 
 TEST(ErrorMap, WritesTheMapAsExrAndAHeatMapWithAColourBar) {
-  const fs::path dir = scratch("heat_map");
+  const fs::path dir = test::scratch_dir("viz_heat_map");
   Image reference(40, 30), image(40, 30);
   for (int y = 0; y < 30; ++y) {
     for (int x = 0; x < 40; ++x) {
@@ -77,7 +71,7 @@ TEST(ErrorMap, WritesTheMapAsExrAndAHeatMapWithAColourBar) {
 }
 
 TEST(Charts, LineChartPngHasTheRequestedSizeAndItsCurves) {
-  const fs::path dir = scratch("chart");
+  const fs::path dir = test::scratch_dir("viz_chart");
   LineChart chart;
   chart.title = "test";
   chart.x_label = "x";

@@ -21,6 +21,7 @@
 #include "scene/ray_caster.h"
 #include "scene/error.h"
 #include "scene/scene_loader.h"
+#include "tests/scratch_dir.h"
 #include "tests/viz/png_inspect.h"
 #include "viz/solution_io.h"
 #include "viz/vtk_export.h"
@@ -29,13 +30,6 @@ namespace rad {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rad_export_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 struct Solved {
   Scene scene;
@@ -55,7 +49,7 @@ const Solved& light_over_floor() {
 }
 
 TEST(VtkExport, OctreeReadsBackAsHexahedraWithItsArrays) {
-  const fs::path dir = scratch("octree");
+  const fs::path dir = test::scratch_dir("viz_octree");
   const Solved& s = light_over_floor();
   const std::vector<EmittingFace> faces = faces_from_solution(s.scene, s.solution);
   const Octree octree(octree_items(s.scene, faces));
@@ -98,7 +92,7 @@ TEST(VtkExport, OctreeReadsBackAsHexahedraWithItsArrays) {
 }
 
 TEST(VtkExport, PixelImageReadsBackRightSideUp) {
-  const fs::path dir = scratch("pixels");
+  const fs::path dir = test::scratch_dir("viz_pixels");
   // 3 x 2 pixels, rows from the top: the top-left pixel is 1.
   write_pixel_image_vti(dir / "p.vti", 3, 2, {{"projected", {1, 2, 3, 4, 5, 6}}, {"bound", {0, 0, 0, 0, 0, 0.5}}});
   vtkNew<vtkXMLImageDataReader> reader;
@@ -120,7 +114,7 @@ TEST(VtkExport, PixelImageReadsBackRightSideUp) {
 }
 
 TEST(VtkExport, PatchMeshFileAndPictureFromTheSceneCamera) {
-  const fs::path dir = scratch("mesh");
+  const fs::path dir = test::scratch_dir("viz_mesh");
   const Solved& s = light_over_floor();
   write_solution(dir / "patch_mesh.vtp", s.solution, s.scene);
   vtkNew<vtkXMLPolyDataReader> reader;
