@@ -57,6 +57,22 @@ void lamp_above(SceneBuilder& b, int lamp, double cx, double cy, double h, doubl
   b.rectangle(cx - s, cx + s, cy - s, cy + s, h, true, lamp);
 }
 
+/// A lamp, a wall standing on the floor, and one site on an edge or vertex: 0 on the floor's
+/// diagonal, 1 at the floor triangles' shared corner, 2 at the wall's foot.
+std::function<RandomScene(RandomSceneMaker&)> on_edges(int which) {
+  return [which](RandomSceneMaker& m) {
+    return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
+      lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2), m.uniform(0.2, 0.6));
+      // A wall standing on the floor along y = w, facing -y, from x = a to e.
+      const double w = m.uniform(-0.5, 0.5), a = m.uniform(-1.5, -0.5), e = m.uniform(0.5, 1.5);
+      b.polygon({Vec3(a, w, 0), Vec3(e, w, 0), Vec3(e, w, 1), Vec3(a, w, 1)}, grey);
+      const double t = m.uniform(-1, 1);
+      const Vec3 sites[3] = {Vec3(t, t, 0), Vec3(2, 2, 0), Vec3(0.5 * (a + e), w, 0)};
+      out.sites = {{sites[which], Vec3::UnitZ()}};
+    });
+  };
+}
+
 std::vector<Family> families() {
   using C = RandomSceneMaker::Conjunction;
   const auto conjunction = [](C kind) { return [kind](RandomSceneMaker& m) { return m.conjunctive_scene(kind); }; };
@@ -98,19 +114,9 @@ std::vector<Family> families() {
            b.rectangle(x.x() + 0.3, x.x() + 0.6, x.y() - 0.2, x.y() + 0.2, 0, false, lamp);
          });
        }},
-      {"on_edge_or_vertex", "x on a polygon edge, at a shared vertex, at a wall's foot", 60,
-       [](RandomSceneMaker& m) {
-         return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
-           lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2), m.uniform(0.2, 0.6));
-           // A wall standing on the floor along y = w, facing -y, from x = a to b.
-           const double w = m.uniform(-0.5, 0.5), a = m.uniform(-1.5, -0.5), e = m.uniform(0.5, 1.5);
-           b.polygon({Vec3(a, w, 0), Vec3(e, w, 0), Vec3(e, w, 1), Vec3(a, w, 1)}, grey);
-           const double t = m.uniform(-1, 1);
-           out.sites = {{Vec3(t, t, 0), Vec3::UnitZ()},          // on the floor's diagonal edge
-                        {Vec3(2, 2, 0), Vec3::UnitZ()},          // the floor triangles' shared vertex
-                        {Vec3(0.5 * (a + e), w, 0), Vec3::UnitZ()}};  // the wall's foot
-         });
-       }},
+      {"on_edge", "x on the edge two floor triangles share", 60, on_edges(0)},
+      {"on_vertex", "x at the vertex two floor triangles share", 60, on_edges(1)},
+      {"wall_foot", "x on the bottom edge of a wall standing on the floor", 60, on_edges(2)},
       {"tiny_and_huge", "polygons from 1e-4 to 1e4 in one scene", 60,
        [](RandomSceneMaker& m) {
          SceneBuilder b;
