@@ -100,12 +100,13 @@ std::string start_xvfb() {
 }  // namespace
 
 void ensure_display() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    const char* display = std::getenv("DISPLAY");
-    if (display && display_answers(display)) return;
-    setenv("DISPLAY", start_xvfb().c_str(), 1);
-  });
+  static std::mutex mutex;
+  static std::string own;  // our Xvfb's display, once started
+  const std::lock_guard<std::mutex> lock(mutex);
+  const char* display = std::getenv("DISPLAY");
+  if (display && display_answers(display)) return;
+  if (own.empty()) own = start_xvfb();
+  setenv("DISPLAY", own.c_str(), 1);
 }
 
 void write_window_png(const std::filesystem::path& file, vtkRenderWindow* window) {

@@ -11,9 +11,10 @@ class vtkRenderWindow;
 
 namespace rad {
 
-/// Makes $DISPLAY name a usable X server, starting Xvfb if needed. Call from the main thread
-/// before any VTK render window is created; later calls return at once. Throws Error when
-/// there is no display and Xvfb cannot be started (not installed: scripts/install-deps.sh).
+/// Makes $DISPLAY name a usable X server, starting Xvfb if needed (at most once per process;
+/// later calls point $DISPLAY back at it if it was changed). Call before any VTK render window
+/// is created. Throws Error when there is no display and Xvfb cannot be started (not
+/// installed: scripts/install-deps.sh).
 void ensure_display();
 
 /// Renders `window` (offscreen) and writes its frame as an RGB PNG, atomically. Throws Error.

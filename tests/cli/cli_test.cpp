@@ -2,6 +2,15 @@
 // one-line messages naming file and element, and the files it writes.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <vtkCellData.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -13,6 +22,7 @@
 
 #include "tests/bad_scene_cases.h"
 #include "viz/image_io.h"
+#include "viz/solution_io.h"
 
 namespace {
 
@@ -340,6 +350,30 @@ TEST(Cli, SweepAndExportWriteTheirFiles) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* file : {"patch_mesh.vtp", "octree.vtu", "pixel_stats.vti", "patch_mesh.png"}) {
     EXPECT_TRUE(fs::exists(dir / "export" / file)) << file;
+  }
+  // Read back with VTK's readers: the render's 8 x 6 pixels with their statistics, the mesh's
+  // cells as the solution's elements, the octree's hexahedra with their arrays.
+  vtkNew<vtkXMLImageDataReader> pixels;
+  pixels->SetFileName((dir / "export/pixel_stats.vti").c_str());
+  pixels->Update();
+  int dims[3];
+  pixels->GetOutput()->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 8);
+  EXPECT_EQ(dims[1], 6);
+  for (const char* name : {"projected", "emitting", "surface", "bound", "relative_bound"}) {
+    EXPECT_NE(pixels->GetOutput()->GetPointData()->GetArray(name), nullptr) << name;
+  }
+  vtkNew<vtkXMLPolyDataReader> mesh;
+  mesh->SetFileName((dir / "export/patch_mesh.vtp").c_str());
+  mesh->Update();
+  EXPECT_EQ(mesh->GetOutput()->GetNumberOfCells(),
+            static_cast<vtkIdType>(rad::read_solution(dir / "s.vtp").elements.size()));
+  vtkNew<vtkXMLUnstructuredGridReader> octree;
+  octree->SetFileName((dir / "export/octree.vtu").c_str());
+  octree->Update();
+  EXPECT_GT(octree->GetOutput()->GetNumberOfCells(), 0);
+  for (const char* name : {"bmax", "patch_count", "energy", "level", "leaf"}) {
+    EXPECT_NE(octree->GetOutput()->GetCellData()->GetArray(name), nullptr) << name;
   }
   // A stats file that is not one names itself, and nothing is written.
   std::ofstream(dir / "bad.json") << "{\"seconds\": 1}";
