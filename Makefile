@@ -31,7 +31,9 @@ demo: build
 	  -o $(DEMO_OUT)/patches.exr
 	$(RADIOSITY) render data/cornell-box/scene.json --method hemisphere --solution $(DEMO_OUT)/solution.vtp \
 	  --width 64 --height 64 -o $(DEMO_OUT)/local-pass.exr
-	@echo "demo: in $(DEMO_OUT)/: solution.vtp (open in ParaView), local-pass.exr/.png/.stats.json (the exact local pass at the default tolerance), patches.exr/.png, albedo, facing"
+	$(RADIOSITY) export data/cornell-box/scene.json --solution $(DEMO_OUT)/solution.vtp --stats $(DEMO_OUT)/local-pass.stats.json \
+	  -o $(DEMO_OUT)/paraview
+	@echo "demo: in $(DEMO_OUT)/: solution.vtp, local-pass.exr/.png/.stats.json (the exact local pass at the default tolerance), patches.exr/.png, albedo, facing; paraview/ (patch mesh, octree, per-pixel stats of local-pass; open in ParaView) and paraview/patch_mesh.png"
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
