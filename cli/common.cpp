@@ -54,6 +54,7 @@ ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::update(double done, const std::string& detail) {
   if (!enabled_) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
   const double t = now_seconds();
   if (t - last_ < 0.1) return;
   last_ = t;
@@ -65,6 +66,7 @@ void ProgressBar::update(double done, const std::string& detail) {
 }
 
 void ProgressBar::finish() {
+  const std::lock_guard<std::mutex> lock(mutex_);
   if (drawn_) std::cerr << "\r\x1b[K" << std::flush;
   drawn_ = false;
 }

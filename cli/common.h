@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "radiosity/solution.h"
@@ -39,7 +40,8 @@ class ThreadLimit {
 };
 
 /// A one-line progress bar on stderr, drawn only when stderr is a terminal, at most 10 times a
-/// second; finish() clears it.
+/// second; finish() clears it. update() may be called from several threads (the renders report
+/// from their workers).
 class ProgressBar {
  public:
   explicit ProgressBar(std::string label);
@@ -49,6 +51,7 @@ class ProgressBar {
   void finish();
 
  private:
+  std::mutex mutex_;
   std::string label_;
   bool enabled_;
   double last_ = -1;

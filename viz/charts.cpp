@@ -86,7 +86,8 @@ void write_chart_png(const std::filesystem::path& file, const LineChart& chart) 
     table->AddColumn(xs);
     table->AddColumn(ys);
     tables.push_back(table);
-    vtkPlot* line = xy->AddPlot(vtkChart::LINE);
+    // A single point gets a marker alone (VTK refuses a line through fewer than 2 points).
+    vtkPlot* line = xy->AddPlot(xs->GetNumberOfTuples() >= 2 ? vtkChart::LINE : vtkChart::POINTS);
     line->SetInputData(table, 0, 1);
     line->SetLabel(series.name);
     const unsigned char* rgb = kPalette[drawn % std::size(kPalette)];

@@ -1,17 +1,17 @@
 #include "viz/offscreen_display.h"
 
 #include <fcntl.h>
-#include <vtkNew.h>
-#include <vtkPNGWriter.h>
-#include <vtkRenderWindow.h>
-#include <vtkWindowToImageFilter.h>
 #include <poll.h>
-#include <sys/prctl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkRenderWindow.h>
+#include <vtkWindowToImageFilter.h>
 
 #include <cerrno>
 #include <cstdlib>
@@ -57,13 +57,14 @@ void stop_xvfb() {
 std::string start_xvfb() {
   int pipe_fds[2];
   if (pipe(pipe_fds) != 0) throw Error(std::string("cannot start Xvfb: pipe: ") + std::strerror(errno));
+  // Xvfb writes the display number it chose to this descriptor once it accepts connections.
+  // Built before fork: the child of a threaded process must not allocate.
+  const std::string fd = std::to_string(pipe_fds[1]);
   const pid_t pid = fork();
   if (pid < 0) throw Error(std::string("cannot start Xvfb: fork: ") + std::strerror(errno));
   if (pid == 0) {
     close(pipe_fds[0]);
     prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive us, even when we are killed
-    // Xvfb writes the display number it chose to this descriptor once it accepts connections.
-    const std::string fd = std::to_string(pipe_fds[1]);
     const int null = open("/dev/null", O_WRONLY);
     if (null >= 0) {
       dup2(null, STDOUT_FILENO);
@@ -88,7 +89,7 @@ std::string start_xvfb() {
     kill(pid, SIGTERM);
     waitpid(pid, &status, 0);
     const bool missing = WIFEXITED(status) && WEXITSTATUS(status) == 127;
-    throw Error(std::string("drawing needs an X display: $DISPLAY is unset and ") +
+    throw Error(std::string("drawing needs an X display: none answers at $DISPLAY and ") +
                 (missing ? "Xvfb is not installed (apt-get install xvfb, or scripts/install-deps.sh)"
                          : "Xvfb did not start"));
   }
