@@ -53,7 +53,7 @@ void stop_xvfb() {
   }
 }
 
-/// Starts Xvfb on a free display and returns ":N". Throws Error.
+/// Starts Xvfb on a free display and returns ":N" once it accepts connections. Throws Error.
 std::string start_xvfb() {
   int pipe_fds[2];
   if (pipe(pipe_fds) != 0) throw Error(std::string("cannot start Xvfb: pipe: ") + std::strerror(errno));
@@ -70,8 +70,11 @@ std::string start_xvfb() {
       dup2(null, STDOUT_FILENO);
       dup2(null, STDERR_FILENO);
     }
+    // -noreset: by default an X server resets when its last client leaves, and a connection
+    // made during the reset fails; VTK then crashed in XSync (seen under ctest -j2, where the
+    // chart's window and its interactor open and close connections on a loaded machine).
     execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1920x1200x24", "-nolisten", "tcp",
-           static_cast<char*>(nullptr));
+           "-noreset", static_cast<char*>(nullptr));
     _exit(127);
   }
   close(pipe_fds[1]);
@@ -95,6 +98,8 @@ std::string start_xvfb() {
   }
   xvfb_pid = pid;
   std::atexit(stop_xvfb);
+  // -displayfd reports the number once the server listens; wait until it answers (up to 20 s).
+  for (int i = 0; i < 2000 && !display_answers(":" + number); ++i) usleep(10000);
   return ":" + number;
 }
 

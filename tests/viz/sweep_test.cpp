@@ -3,6 +3,7 @@
 // error; no exact pixel leaves its certified bound (counted here independently); the charts and
 // heat maps are PNGs of the expected size with more than one colour.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -81,7 +82,8 @@ Recomputed recompute(const fs::path& image_file, const fs::path& reference_file)
 class SweepOnCornell : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    folder_ = fs::temp_directory_path() / "rad_sweep_test";
+    // One folder per process: ctest runs each of these tests in its own process, in parallel.
+    folder_ = fs::temp_directory_path() / ("rad_sweep_test_" + std::to_string(::getpid()));
     fs::remove_all(folder_);
     const auto& cornell = test::coarse_cornell();
     CameraSpec spec = *cornell.scene.camera;
@@ -92,6 +94,7 @@ class SweepOnCornell : public ::testing::Test {
     settings.samples = {4, 16};
     rows_ = run_sweep(cornell.scene, cornell.faces, Camera(spec), settings, folder_);
   }
+  static void TearDownTestSuite() { fs::remove_all(folder_); }
   static fs::path folder_;
   static std::vector<SweepRow> rows_;
 };
