@@ -28,7 +28,10 @@ void run_sweep_command(const SweepOptions& o) {
   const Solution solution = load_solution_for(scene, o.scene, o.solution);
   const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
   std::cerr << "sweep: " << camera.width() << "x" << camera.height() << ", " << faces.size()
-            << " elements; the reference is " << o.settings.reference_method << " at tolerance 0\n";
+            << " elements; the reference is "
+            << (o.settings.reference_file.empty() ? o.settings.reference_method + " at tolerance 0"
+                                                  : o.settings.reference_file.string())
+            << "\n";
 
   ProgressBar bar("sweep");
   const auto progress = [&](const std::string& what, double done) {
@@ -77,6 +80,9 @@ void add_sweep_command(CLI::App& app, Run& run) {
                   "Exact method whose tolerance-0 image is the reference")
       ->check(CLI::IsMember({"hemisphere", "vertex"}))
       ->capture_default_str();
+  sub->add_option("--reference", o->settings.reference_file,
+                  "An exact image of the same size from an earlier run (e.g. a sweep's reference.exr) to use as "
+                  "the reference instead of rendering one");
   sub->add_option("--width", o->width, "Image width in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
   sub->add_option("--height", o->height, "Image height in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
   sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));

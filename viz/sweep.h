@@ -22,6 +22,11 @@ struct SweepSettings {
   /// The reference is the tolerance-0 image of this exact method. A tolerance-0 row of the same
   /// method is the reference render itself (timed once, error 0 by construction).
   std::string reference_method = "hemisphere";
+  /// When set: an exact image from an earlier run (a sweep's reference.exr, or a tolerance-0
+  /// render) used as the reference instead of rendering one; it must have the camera's size.
+  /// Its float precision limits agreement to ~1e-7, so the bound check allows 2^-23 of the
+  /// reference instead of 1e-8, and a tolerance-0 row is rendered like any other.
+  std::filesystem::path reference_file;
 };
 
 /// One row of results.csv.
@@ -45,8 +50,10 @@ struct SweepRow {
 
 /// Per-pixel comparison of a local-pass image with the reference: the relative error map and
 /// the bound check (SweepRow's error, violations, error_over_bound_max).
+/// `slack` is the fraction of the reference's value an excess over the bound may have and
+/// still count as rounding.
 void compare_to_reference(const LocalPassImage& image, const LocalPassImage& reference, SweepRow& row,
-                          ErrorMap* map = nullptr);
+                          ErrorMap* map = nullptr, double slack = 1e-8);
 
 /// Reports progress: `what` is being rendered, `done` of it in [0, 1].
 using SweepProgress = std::function<void(const std::string& what, double done)>;

@@ -342,6 +342,31 @@ TEST(Cli, SweepAndExportWriteTheirFiles) {
     EXPECT_TRUE(fs::exists(dir / "sweep" / file)) << file;
   }
 
+  // Again with that reference from the file: the tolerance-0 row is rendered and agrees with it
+  // to float precision, and no pixel leaves its bound.
+  r = run("sweep " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "sweep2") +
+          " --width 8 --height 6 --tolerances 0,0.3 --methods hemisphere --reference " +
+          quoted(dir / "sweep/reference.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream csv2(slurp(dir / "sweep2/results.csv"));
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(csv2, line);) {
+    std::vector<std::string> fields;
+    std::istringstream split(line);
+    for (std::string f; std::getline(split, f, ',');) fields.push_back(f);
+    rows.push_back(fields);
+  }
+  ASSERT_EQ(rows.size(), 3u);  // header + T = 0 + T = 0.3
+  EXPECT_EQ(rows[0][6], "error_max");
+  EXPECT_EQ(rows[0][9], "bound_violations");
+  EXPECT_LE(std::stod(rows[1][6]), 1e-6);  // T = 0 against the float reference
+  EXPECT_EQ(rows[1][9], "0");
+  EXPECT_EQ(rows[2][9], "0");
+  r = run("sweep " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "sweep3") +
+          " --width 9 --height 6 --reference " + quoted(dir / "sweep/reference.exr"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("reference.exr: 8x6 pixels, but the sweep renders 9x6"), std::string::npos) << r.err;
+
   r = run("render " + scene + " --solution " + quoted(dir / "s.vtp") + " --width 8 --height 6 -o " +
           quoted(dir / "lp.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
