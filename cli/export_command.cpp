@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -49,9 +50,11 @@ void run_export(const ExportOptions& o) {
   const std::filesystem::path folder(o.output);
   std::vector<std::string> written;
 
-  // Read the statistics first: a bad --stats file fails before anything is written.
+  // Read the statistics and check the camera first: bad input fails before anything is written.
   ChannelImage pixels;
   if (!o.stats.empty()) pixels = read_exr_channels(pixels_file_of(o.stats));
+  std::optional<CameraSpec> camera;
+  if (!o.no_png) camera = camera_for(scene, o.scene, "export (for patch_mesh.png; or --no-png)", o.width, o.height);
 
   write_solution(folder / "patch_mesh.vtp", solution, scene);
   written.push_back("patch_mesh.vtp");
@@ -65,8 +68,7 @@ void run_export(const ExportOptions& o) {
     written.push_back("pixel_stats.vti");
   }
   if (!o.no_png) {
-    write_patch_mesh_png(folder / "patch_mesh.png", solution, scene, camera_for(scene, o.scene, "export", o.width, o.height),
-                         o.exposure);
+    write_patch_mesh_png(folder / "patch_mesh.png", solution, scene, *camera, o.exposure);
     written.push_back("patch_mesh.png");
   }
   std::cerr << "export: wrote to " << folder.string() << "/:";

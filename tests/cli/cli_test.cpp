@@ -151,6 +151,17 @@ TEST(Cli, RenderWithoutCameraOrWithBadOutputExitsOne) {
           (dir / "file/x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("file/x.exr"), std::string::npos) << r.err;
+  // export's picture needs the camera too: refused before anything is written; --no-png works.
+  const std::string square = quoted(kData / "meshes/square_obj.json");
+  r = run("solve " + square + " -o " + quoted(dir / "sq.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run("export " + square + " -s " + quoted(dir / "sq.vtp") + " -o " + quoted(dir / "ex"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no \"camera\" block"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "ex"));
+  r = run("export " + square + " -s " + quoted(dir / "sq.vtp") + " -o " + quoted(dir / "ex") + " --no-png");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "ex/octree.vtu"));
 }
 
 TEST(Cli, SolveThenRenderPatches) {
