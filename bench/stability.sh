@@ -12,7 +12,10 @@ out=bench/results/stability.md
   echo "Produced by \`make stability\` (\`$build/bench/stability_bench\`), one thread."
   echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
   echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  dirty=""
+  [ -z "$(git status --porcelain -- scene hemisphere localpass bench/stability_bench.cpp tests/random_scenes.h 2>/dev/null)" ] \
+    || dirty=" plus uncommitted changes"
+  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
   echo
   echo "Direct light: every polygon occludes from both sides, the lamps emit. Seeded scenes (seed"
   echo "100000 x family + scene); each row gathers at every site of every scene with the hemisphere"

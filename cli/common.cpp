@@ -81,4 +81,17 @@ void add_samples_option(CLI::App* sub, int* samples, const std::string& unit) {
       ->capture_default_str();
 }
 
+CLI::Option* add_solution_option(CLI::App* sub, std::string* solution, const std::string& detail) {
+  return sub->add_option("-s,--solution", *solution, "Solution file (.vtp) from `radiosity solve`" + detail);
+}
+
+void add_image_size_options(CLI::App* sub, int* width, int* height, const std::string& what) {
+  sub->add_option("--width", *width, what + " width in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
+  sub->add_option("--height", *height, what + " height in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
+}
+
+void add_threads_option(CLI::App* sub, int* threads) {
+  sub->add_option("-j,--threads", *threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+}
+
 }  // namespace rad::cli

@@ -18,6 +18,14 @@ namespace rad::cli {
 void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help);
 void add_samples_option(CLI::App* sub, int* samples, const std::string& unit);
 
+/// -s,--solution (a .vtp from `radiosity solve`); `detail` is appended to the help text.
+CLI::Option* add_solution_option(CLI::App* sub, std::string* solution, const std::string& detail = "");
+/// --width and --height overriding the camera's image size (0: the camera's); `what` names the
+/// image in the help text.
+void add_image_size_options(CLI::App* sub, int* width, int* height, const std::string& what = "Image");
+/// -j,--threads (0: all cores).
+void add_threads_option(CLI::App* sub, int* threads);
+
 /// Loads and validates a scene, printing its warnings to stderr.
 Scene load_scene_reporting(const std::string& path);
 

@@ -87,13 +87,12 @@ void add_export_command(CLI::App& app, Run& run) {
       "per-pixel statistics (pixel_stats.vti); and patch_mesh.png, the mesh coloured by radiosity from the scene "
       "camera.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
-  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`")->required();
+  add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   sub->add_option("--stats", o->stats,
                   "Stats JSON written by `radiosity render` (IMAGE.stats.json): export its per-pixel faces "
                   "projected and bound as pixel_stats.vti");
-  sub->add_option("--width", o->width, "patch_mesh.png width (default: the camera's)")->check(CLI::Range(1, 1 << 14));
-  sub->add_option("--height", o->height, "patch_mesh.png height (default: the camera's)")->check(CLI::Range(1, 1 << 14));
+  add_image_size_options(sub, &o->width, &o->height, "patch_mesh.png");
   sub->add_option("--exposure", o->exposure, "patch_mesh.png exposure in stops (linear * 2^exposure)")
       ->capture_default_str();
   sub->add_flag("--no-png", o->no_png, "Do not draw patch_mesh.png (no X display or Xvfb needed)");

@@ -116,13 +116,13 @@ void add_probe_command(CLI::App& app, Run& run) {
                   "--samples cosine-weighted rays per point, bound reported as inf")
       ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo"}))
       ->capture_default_str();
-  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`: gather from its elements");
+  add_solution_option(sub, &o->solution, ": gather from its elements");
   add_tolerance_option(sub, &o->tolerance,
                        "With --solution: stop once the certified error bound is at most this fraction of the "
                        "value (0: exact); the bound column reports it");
   add_samples_option(sub, &o->samples, "point");
   sub->add_option("-o,--output", o->output, "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
-  sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_probe(*o); }; });
 }
 

@@ -43,24 +43,7 @@ struct RenderOptions {
 /// Per-pixel statistics of a local-pass render, as written to the stats JSON.
 nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& image, int face_count, int leaves,
                                 double seconds) {
-  size_t pixels = 0;
-  double emitting_sum = 0, projected_sum = 0, relative_bound_sum = 0, relative_bound_max = 0, bound_max = 0;
-  int emitting_max = 0, projected_max = 0;
-  for (size_t i = 0; i < image.surface.size(); ++i) {
-    if (!image.surface[i]) continue;
-    ++pixels;
-    emitting_sum += image.emitting[i];
-    projected_sum += image.projected[i];
-    emitting_max = std::max(emitting_max, image.emitting[i]);
-    projected_max = std::max(projected_max, image.projected[i]);
-    const double bound = image.bound.pixels[i].maxCoeff();
-    const double value = image.radiosity.pixels[i].maxCoeff();
-    bound_max = std::max(bound_max, bound);
-    const double relative = value > 0 ? bound / value : 0;
-    relative_bound_sum += relative;
-    relative_bound_max = std::max(relative_bound_max, relative);
-  }
-  const double n = std::max<size_t>(pixels, 1);
+  const LocalPassSummary summary = summarize(image);
   const double faces = face_count;
   nlohmann::json out;
   out["method"] = o.method;
@@ -75,12 +58,13 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& im
   out["threads"] = tbb::this_task_arena::max_concurrency();
   out["faces"] = face_count;
   out["octree_leaves"] = leaves;
-  out["pixels_gathered"] = pixels;
-  out["emitting_per_pixel"] = {{"mean", emitting_sum / n}, {"max", emitting_max}};
-  out["emitting_fraction_mean"] = emitting_sum / n / faces;
-  out["projected_per_pixel"] = {{"mean", projected_sum / n}, {"max", projected_max}};
-  out["projected_fraction_mean"] = projected_sum / n / faces;
-  out["bound"] = {{"relative_mean", relative_bound_sum / n}, {"relative_max", relative_bound_max}, {"max", bound_max}};
+  out["pixels_gathered"] = summary.pixels;
+  out["emitting_per_pixel"] = {{"mean", summary.emitting_mean}, {"max", summary.emitting_max}};
+  out["emitting_fraction_mean"] = summary.emitting_mean / faces;
+  out["projected_per_pixel"] = {{"mean", summary.projected_mean}, {"max", summary.projected_max}};
+  out["projected_fraction_mean"] = summary.projected_mean / faces;
+  out["bound"] = {{"relative_mean", summary.relative_bound_mean}, {"relative_max", summary.relative_bound_max},
+                  {"max", summary.bound_max}};
   return out;
 }
 
@@ -209,15 +193,14 @@ void add_render_command(CLI::App& app, Run& run) {
                        "fraction of its value (0: exact)");
   add_samples_option(sub, &o->samples, "pixel");
   sub->add_option("--stats", o->stats, "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
-  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`");
+  add_solution_option(sub, &o->solution);
   sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");
   sub->add_option("-o,--output", o->output, "Output image (.exr, linear float RGB)")->required();
   sub->add_option("--preview", o->preview, "PNG preview path (default: OUTPUT with .png)");
   sub->add_flag("--no-preview", o->no_preview, "Do not write the PNG preview");
-  sub->add_option("--width", o->width, "Image width in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
-  sub->add_option("--height", o->height, "Image height in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
+  add_image_size_options(sub, &o->width, &o->height);
   sub->add_option("--exposure", o->exposure, "Preview exposure in stops (PNG = linear * 2^exposure)")->capture_default_str();
-  sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_render(*o); }; });
 }
 

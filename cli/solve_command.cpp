@@ -82,7 +82,7 @@ void add_solve_command(CLI::App& app, Run& run) {
   sub->add_option("--visibility-samples", s.visibility_samples, "Shadow rays per receiver point and shooter")
       ->check(CLI::Range(1, 4096))->capture_default_str();
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
-  sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_solve(*o); }; });
 }
 

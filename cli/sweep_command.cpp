@@ -61,7 +61,7 @@ void add_sweep_command(CLI::App& app, Run& run) {
       "Accuracy against tolerance: render the exact reference once, then each method at each setting; write "
       "results.csv, the images, error maps and charts (PNG) to a folder.");
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
-  sub->add_option("-s,--solution", o->solution, "Solution file (.vtp) from `radiosity solve`")->required();
+  add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   sub->add_option("--methods", o->settings.methods, "Methods to run: hemisphere, vertex, montecarlo")
       ->delimiter(',')
@@ -83,9 +83,8 @@ void add_sweep_command(CLI::App& app, Run& run) {
   sub->add_option("--reference", o->settings.reference_file,
                   "An exact image of the same size from an earlier run (e.g. a sweep's reference.exr) to use as "
                   "the reference instead of rendering one");
-  sub->add_option("--width", o->width, "Image width in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
-  sub->add_option("--height", o->height, "Image height in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
-  sub->add_option("-j,--threads", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  add_image_size_options(sub, &o->width, &o->height);
+  add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_sweep_command(*o); }; });
 }
 

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 
 
@@ -64,6 +65,30 @@ LocalPassImage render_monte_carlo(const Scene& scene, const RayCaster& caster, c
     out.emitting[index] = samples;
     out.projected[index] = samples;
   });
+}
+
+LocalPassSummary summarize(const LocalPassImage& image) {
+  LocalPassSummary s;
+  double emitting_sum = 0, projected_sum = 0, relative_bound_sum = 0;
+  for (size_t i = 0; i < image.surface.size(); ++i) {
+    if (!image.surface[i]) continue;
+    ++s.pixels;
+    emitting_sum += image.emitting[i];
+    projected_sum += image.projected[i];
+    s.emitting_max = std::max(s.emitting_max, image.emitting[i]);
+    s.projected_max = std::max(s.projected_max, image.projected[i]);
+    const double bound = image.bound.pixels[i].maxCoeff();
+    const double value = image.radiosity.pixels[i].maxCoeff();
+    s.bound_max = std::max(s.bound_max, bound);
+    const double relative = value > 0 ? bound / value : 0;
+    relative_bound_sum += relative;
+    s.relative_bound_max = std::max(s.relative_bound_max, relative);
+  }
+  const double n = static_cast<double>(std::max<size_t>(s.pixels, 1));
+  s.emitting_mean = emitting_sum / n;
+  s.projected_mean = projected_sum / n;
+  s.relative_bound_mean = relative_bound_sum / n;
+  return s;
 }
 
 }  // namespace rad

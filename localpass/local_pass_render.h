@@ -20,6 +20,18 @@ struct LocalPassImage {
   std::vector<char> surface;    ///< Per pixel: 1 where a front-facing surface was gathered
 };
 
+/// Per-pixel counts and bounds summed up over the pixels where a surface was gathered (the
+/// render's stats JSON, the sweep's table).
+struct LocalPassSummary {
+  size_t pixels = 0;  ///< pixels gathered
+  double emitting_mean = 0, projected_mean = 0;
+  int emitting_max = 0, projected_max = 0;
+  double bound_max = 0;  ///< largest bound, largest channel
+  /// bound / B per pixel (largest channels; 0 where B = 0): mean and max.
+  double relative_bound_mean = 0, relative_bound_max = 0;
+};
+LocalPassSummary summarize(const LocalPassImage& image);
+
 /// Renders through `camera`; parallel over 16x16 pixel tiles (TBB). Every pixel is computed on
 /// its own, so the image is bitwise the same for any thread count. `progress` (may be empty) is
 /// called with the number of pixels done, from worker threads, now and then.

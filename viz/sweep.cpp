@@ -122,15 +122,9 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<EmittingFa
   const auto record = [&](SweepRow row, const LocalPassImage& image, double seconds) {
     row.seconds = seconds;
     if (row.exact()) {
-      double sum = 0, count = 0, most = 0;
-      for (size_t i = 0; i < image.surface.size(); ++i) {
-        if (!image.surface[i]) continue;
-        sum += image.projected[i];
-        most = std::max<double>(most, image.projected[i]);
-        ++count;
-      }
-      row.projected_mean = count > 0 ? sum / count : 0;
-      row.projected_max = most;
+      const LocalPassSummary summary = summarize(image);
+      row.projected_mean = summary.projected_mean;
+      row.projected_max = summary.projected_max;
     }
     ErrorMap map;
     compare_to_reference(image, reference, row, &map, slack);

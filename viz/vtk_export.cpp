@@ -22,6 +22,7 @@
 #include <algorithm>
 
 #include "scene/error.h"
+#include "scene/polygon.h"
 #include "viz/atomic_file.h"
 #include "viz/image_io.h"
 #include "viz/offscreen_display.h"
@@ -29,13 +30,6 @@
 
 namespace rad {
 namespace {
-
-/// Twice the area of a convex planar polygon (the items are the solver's elements).
-double polygon_area(const std::vector<Vec3>& corners) {
-  Vec3 sum = Vec3::Zero();
-  for (size_t i = 1; i + 1 < corners.size(); ++i) sum += (corners[i] - corners[0]).cross(corners[i + 1] - corners[0]);
-  return 0.5 * sum.norm();
-}
 
 template <class Writer, class Data>
 void write_xml(const std::filesystem::path& file, Data* data, const std::string& what) {
@@ -58,7 +52,7 @@ void write_octree_vtu(const std::filesystem::path& file, const Octree& octree) {
   for (size_t v = 0; v < voxels.size(); ++v) {
     for (const int i : voxels[v].items) {
       const OctreeItem& item = octree.items()[i];
-      energy[v] += polygon_area(item.corners) * item.radiosity.maxCoeff();
+      energy[v] += 0.5 * newell_vector(item.corners).norm() * item.radiosity.maxCoeff();  // area x B
     }
   }
   for (size_t v = voxels.size(); v-- > 0;) {
