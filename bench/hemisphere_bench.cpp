@@ -13,8 +13,10 @@
 #include <random>
 #include <string>
 
-#include "localpass/hemisphere_gather.h"
-#include "localpass/vertex_tracing.h"
+#include "radiosity/solution_faces.h"
+#include "hemisphere/hemisphere_gatherer.h"
+#include "scene/polygon_faces.h"
+#include "vertex/vertex_tracer.h"
 #include "radiosity/mesher.h"
 #include "scene/polygon.h"
 #include "scene/scene_loader.h"
@@ -107,7 +109,7 @@ int main(int argc, char** argv) {
   };
   for (const double size : {0.062, 0.034, 0.0185}) {
     const auto faces = patch_faces(cornell, size);
-    const rad::HemisphereGatherer hemisphere(cornell, faces);
+    const rad::HemisphereGatherer hemisphere(faces, cornell.tolerance());
     const rad::VertexTracer tracer(cornell, faces);
     const auto by_hemisphere = [&](const rad::Vec3& x, const rad::Vec3& n) { return hemisphere.gather(x, n).irradiance; };
     const auto by_vertex = [&](const rad::Vec3& x, const rad::Vec3& n) { return tracer.gather(x, n).irradiance; };
@@ -123,7 +125,7 @@ int main(int argc, char** argv) {
   points.clear();
   std::uniform_real_distribution<double> floor(-1.2, 1.2);
   for (int i = 0; i < count / 4; ++i) points.push_back({{floor(rng), floor(rng), 0}, {0, 0, 1}});
-  const rad::HemisphereGatherer hemisphere(stress);
+  const rad::HemisphereGatherer hemisphere(rad::faces_from_polygons(stress), stress.tolerance());
   const rad::VertexTracer tracer(stress);
   const double h1 = rate([&](const rad::Vec3& x, const rad::Vec3& n) { return hemisphere.gather(x, n).irradiance; }, 1);
   const double v1 = rate([&](const rad::Vec3& x, const rad::Vec3& n) { return tracer.gather(x, n).irradiance; }, 1);

@@ -14,7 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "localpass/local_pass_render.h"
+#include "radiosity/solution_faces.h"
+#include "render/irradiance_render.h"
 #include "localpass/monte_carlo.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
@@ -33,7 +34,7 @@ struct Errors {
 
 /// Per pixel: |B - B_ref| / B_ref on the brightest channel, over the surface pixels; and
 /// error / bound where the bound is positive.
-Errors compare(const rad::LocalPassImage& image, const rad::LocalPassImage& reference) {
+Errors compare(const rad::IrradianceImage& image, const rad::IrradianceImage& reference) {
   Errors e;
   double sum = 0, tight_sum = 0;
   int count = 0, bounded = 0;
@@ -121,19 +122,19 @@ int main(int argc, char** argv) {
   };
 
   std::vector<std::string> rows;
-  rad::LocalPassImage hemisphere_reference;
-  for (const rad::ExactMethod method : {rad::ExactMethod::hemisphere, rad::ExactMethod::vertex}) {
-    const char* name = method == rad::ExactMethod::hemisphere ? "hemisphere" : "vertex";
+  rad::IrradianceImage hemisphere_reference;
+  for (const rad::Method method : {rad::Method::hemisphere, rad::Method::vertex}) {
+    const std::string name = rad::method_name(method);
     const rad::LocalPass pass(scene, faces, method);
     auto start = Clock::now();
-    const rad::LocalPassImage reference = rad::render_local_pass(scene, caster, camera, pass, 0);
+    const rad::IrradianceImage reference = rad::render_local_pass(scene, caster, camera, pass, 0);
     const double reference_seconds = seconds_since(start);
-    if (method == rad::ExactMethod::hemisphere) {
+    if (method == rad::Method::hemisphere) {
       hemisphere_reference = reference;
       const rad::MonteCarloGatherer gatherer(scene, faces);
       for (const int samples : {16, 64, 256, 1024, 4096, 16384}) {
         start = Clock::now();
-        const rad::LocalPassImage image = rad::render_monte_carlo(scene, caster, camera, gatherer, samples);
+        const rad::IrradianceImage image = rad::render_monte_carlo(scene, caster, camera, gatherer, samples);
         const double s = seconds_since(start);
         const Errors e = compare(image, reference);
         mc.push_back({samples, s, e.rms, e.max});
@@ -143,28 +144,28 @@ int main(int argc, char** argv) {
       const Errors e = compare(reference, hemisphere_reference);
       std::fprintf(stderr, "vertex vs hemisphere at tolerance 0: max relative difference %.2e\n", e.max);
     }
-    std::printf("| %s | 0 | %.1f | 1.00 | %.1f%% | %.1f%% | 0 | 0 | - | 0 | - |\n", name, reference_seconds,
-                100 * mean_fraction(reference.emitting, reference.surface, pass.face_count()),
+    std::printf("| %s | 0 | %.1f | 1.00 | %.1f%% | %.1f%% | 0 | 0 | - | 0 | - |\n", name.c_str(), reference_seconds,
+                100 * mean_fraction(reference.gathered_exactly, reference.surface, pass.face_count()),
                 100 * mean_fraction(reference.projected, reference.surface, pass.face_count()));
     if (naive) {
       rad::LocalPassSettings no_culling;
       no_culling.occlusion_culling = false;
       const rad::LocalPass naive_pass(scene, faces, method, no_culling);
       start = Clock::now();
-      const rad::LocalPassImage image = rad::render_local_pass(scene, caster, camera, naive_pass, 0);
+      const rad::IrradianceImage image = rad::render_local_pass(scene, caster, camera, naive_pass, 0);
       const double s = seconds_since(start);
       const Errors e = compare(image, reference);
-      std::printf("| %s, no culling | 0 | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | - | %d | - |\n", name, s,
-                  reference_seconds / s, 100 * mean_fraction(image.emitting, image.surface, pass.face_count()),
+      std::printf("| %s, no culling | 0 | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | - | %d | - |\n", name.c_str(), s,
+                  reference_seconds / s, 100 * mean_fraction(image.gathered_exactly, image.surface, pass.face_count()),
                   100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms, e.violations);
     }
     for (const double tolerance : tolerances) {
       start = Clock::now();
-      const rad::LocalPassImage image = rad::render_local_pass(scene, caster, camera, pass, tolerance);
+      const rad::IrradianceImage image = rad::render_local_pass(scene, caster, camera, pass, tolerance);
       const double s = seconds_since(start);
       const Errors e = compare(image, reference);
-      std::printf("| %s | %.2f | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | %.3f, %.3f | %d | %s |\n", name, tolerance, s,
-                  reference_seconds / s, 100 * mean_fraction(image.emitting, image.surface, pass.face_count()),
+      std::printf("| %s | %.2f | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | %.3f, %.3f | %d | %s |\n", name.c_str(), tolerance, s,
+                  reference_seconds / s, 100 * mean_fraction(image.gathered_exactly, image.surface, pass.face_count()),
                   100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms, e.tightness_mean,
                   e.tightness_max, e.violations, mc_seconds_for(e.rms).c_str());
       std::fflush(stdout);

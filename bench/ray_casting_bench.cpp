@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "localpass/albedo_render.h"
+#include "render/albedo_render.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 

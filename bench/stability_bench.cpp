@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "localpass/emitting_faces.h"
-#include "localpass/hemisphere_gather.h"
+#include "scene/polygon_faces.h"
+#include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/monte_carlo.h"
-#include "localpass/vertex_tracing.h"
+#include "vertex/vertex_tracer.h"
 #include "tests/random_scenes.h"
 
 namespace {
@@ -176,7 +176,7 @@ int main() {
     for (int s = 1; s <= family.scenes; ++s) {
       RandomSceneMaker maker(100000 * (f + 1) + s);
       const RandomScene r = family.make(maker);
-      const rad::HemisphereGatherer hemisphere(r.scene);
+      const rad::HemisphereGatherer hemisphere(rad::faces_from_polygons(r.scene), r.scene.tolerance());
       const rad::VertexTracer tracer(r.scene);
       const rad::MonteCarloGatherer monte_carlo(r.scene, rad::faces_from_polygons(r.scene));
       for (size_t i = 0; i < r.sites.size(); ++i) {

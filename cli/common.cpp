@@ -8,7 +8,7 @@
 
 #include "scene/error.h"
 #include "scene/scene_loader.h"
-#include "viz/solution_io.h"
+#include "formats/solution_io.h"
 
 namespace rad::cli {
 

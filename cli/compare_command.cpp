@@ -6,8 +6,9 @@
 
 #include "cli/commands.h"
 #include "scene/error.h"
-#include "viz/error_map.h"
-#include "viz/image_io.h"
+#include "experiments/error_map.h"
+#include "viz/error_heat_map.h"
+#include "formats/image_io.h"
 
 namespace rad::cli {
 namespace {
@@ -34,10 +35,13 @@ void run_compare(const CompareOptions& o) {
   if (o.map.empty()) return;
   std::filesystem::path png;
   if (!o.no_png) png = o.png.empty() ? std::filesystem::path(o.map).replace_extension(".png") : std::filesystem::path(o.png);
-  write_error_map(o.map, png, map,
-                  "relative error of " + std::filesystem::path(o.image).filename().string() + " against " +
-                      std::filesystem::path(o.reference).filename().string(),
-                  o.max);
+  write_error_map_exr(o.map, map);
+  if (!png.empty()) {
+    write_error_heat_map(png, map,
+                         "relative error of " + std::filesystem::path(o.image).filename().string() + " against " +
+                             std::filesystem::path(o.reference).filename().string(),
+                         o.max);
+  }
   std::cerr << "compare: wrote " << o.map << (png.empty() ? "" : ", " + png.string()) << "\n";
 }
 

@@ -8,14 +8,15 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
+#include "radiosity/solution_faces.h"
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "localpass/emitting_faces.h"
+#include "scene/polygon_faces.h"
 #include "localpass/local_pass.h"
 #include "octree/octree.h"
 #include "scene/error.h"
-#include "viz/image_io.h"
-#include "viz/solution_io.h"
+#include "formats/image_io.h"
+#include "formats/solution_io.h"
 #include "viz/vtk_export.h"
 
 namespace rad::cli {
@@ -59,7 +60,7 @@ void run_export(const ExportOptions& o) {
   write_solution(folder / "patch_mesh.vtp", solution, scene);
   written.push_back("patch_mesh.vtp");
 
-  const Octree octree(octree_items(scene, faces_from_solution(scene, solution)));
+  const Octree octree(octree_items(faces_from_solution(scene, solution)));
   write_octree_vtu(folder / "octree.vtu", octree);
   written.push_back("octree.vtu (" + std::to_string(octree.leaves().size()) + " leaves)");
 

@@ -13,14 +13,15 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "localpass/hemisphere_gather.h"
 #include "localpass/local_pass.h"
+#include "localpass/method.h"
 #include "localpass/monte_carlo.h"
-#include "localpass/vertex_tracing.h"
+#include "radiosity/solution_faces.h"
+#include "scene/polygon_faces.h"
 #include "scene/error.h"
-#include "viz/atomic_file.h"
-#include "viz/points_csv.h"
-#include "viz/solution_io.h"
+#include "formats/atomic_file.h"
+#include "formats/points_csv.h"
+#include "formats/solution_io.h"
 
 namespace rad::cli {
 namespace {
@@ -45,37 +46,33 @@ void run_probe(const ProbeOptions& o) {
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
   std::function<void(size_t)> gather;
   // Only the chosen method is built (vertex tracing precomputes interpenetrations).
-  std::optional<HemisphereGatherer> hemisphere;
-  std::optional<VertexTracer> tracer;
+  const Method method = *parse_method(o.method);  // CLI11 checked the name
+  std::unique_ptr<ExactGatherer> direct;
   std::optional<LocalPass> pass;
   std::optional<MonteCarloGatherer> monte_carlo;
-  if (o.method == "montecarlo" && o.solution.empty()) {
+  if (!is_exact(method) && o.solution.empty()) {
     throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
   }
   if (!o.solution.empty()) {
     const Solution solution = load_solution_for(scene, o.scene, o.solution);
-    if (o.method == "montecarlo") {
+    if (!is_exact(method)) {
       monte_carlo.emplace(scene, faces_from_solution(scene, solution));
       gather = [&](size_t i) {
         irradiance[i] = monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
         bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified
       };
     } else {
-      pass.emplace(scene, faces_from_solution(scene, solution),
-                   o.method == "vertex" ? ExactMethod::vertex : ExactMethod::hemisphere);
+      pass.emplace(scene, faces_from_solution(scene, solution), method);
       gather = [&](size_t i) {
         const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
         irradiance[i] = r.irradiance;
         bound[i] = r.bound.maxCoeff();
       };
     }
-  } else if (o.method == "vertex") {
-    // Both exact methods see the same faces (the polygons, concave ones as triangles).
-    tracer.emplace(scene);
-    gather = [&](size_t i) { irradiance[i] = tracer->gather(points[i].x, points[i].n).irradiance; };
   } else {
-    hemisphere.emplace(scene);
-    gather = [&](size_t i) { irradiance[i] = hemisphere->gather(points[i].x, points[i].n).irradiance; };
+    // Both exact methods see the same faces (the polygons, concave ones as triangles).
+    direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
+    gather = [&](size_t i) { irradiance[i] = exact_irradiance(*direct, points[i].x, points[i].n); };
   }
 
   ProgressBar bar("probe");
@@ -114,7 +111,7 @@ void add_probe_command(CLI::App& app, Run& run) {
                   "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing with "
                   "angular spans (paper 001). Both exact; they agree to 1e-9. montecarlo (with --solution): "
                   "--samples cosine-weighted rays per point, bound reported as inf")
-      ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo"}))
+      ->check(CLI::IsMember(method_names()))
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");
   add_tolerance_option(sub, &o->tolerance,

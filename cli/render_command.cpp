@@ -10,19 +10,28 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
+#include "radiosity/solution_faces.h"
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "localpass/albedo_render.h"
-#include "localpass/local_pass_render.h"
-#include "localpass/patch_render.h"
-#include "viz/atomic_file.h"
+#include "render/albedo_render.h"
+#include "localpass/method.h"
+#include "render/irradiance_render.h"
+#include "render/patch_render.h"
+#include "formats/atomic_file.h"
 #include "scene/error.h"
 #include "scene/ray_caster.h"
-#include "viz/image_io.h"
-#include "viz/solution_io.h"
+#include "formats/image_io.h"
+#include "formats/solution_io.h"
 
 namespace rad::cli {
 namespace {
+
+/// The local pass's methods (localpass/method.h) and the plain renders.
+std::vector<std::string> render_method_names() {
+  std::vector<std::string> names = method_names();
+  for (const char* plain : {"patches", "albedo", "facing"}) names.emplace_back(plain);
+  return names;
+}
 
 struct RenderOptions {
   std::string scene;
@@ -41,13 +50,18 @@ struct RenderOptions {
 };
 
 /// Per-pixel statistics of a local-pass render, as written to the stats JSON.
-nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& image, int face_count, int leaves,
+nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& image, int face_count, int leaves,
                                 double seconds) {
-  const LocalPassSummary summary = summarize(image);
+  IrradianceSummary summary = summarize(image);
+  if (image.samples_per_pixel > 0) {
+    // Monte Carlo: the file has always reported the rays per pixel in these fields.
+    summary.gathered_exactly_mean = summary.projected_mean = image.samples_per_pixel;
+    summary.gathered_exactly_max = summary.projected_max = image.samples_per_pixel;
+  }
   const double faces = face_count;
   nlohmann::json out;
   out["method"] = o.method;
-  if (o.method == "montecarlo") {
+  if (image.samples_per_pixel > 0) {
     out["samples"] = o.samples;
   } else {
     out["tolerance"] = o.tolerance;
@@ -59,8 +73,8 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& im
   out["faces"] = face_count;
   out["octree_leaves"] = leaves;
   out["pixels_gathered"] = summary.pixels;
-  out["emitting_per_pixel"] = {{"mean", summary.emitting_mean}, {"max", summary.emitting_max}};
-  out["emitting_fraction_mean"] = summary.emitting_mean / faces;
+  out["emitting_per_pixel"] = {{"mean", summary.gathered_exactly_mean}, {"max", summary.gathered_exactly_max}};
+  out["emitting_fraction_mean"] = summary.gathered_exactly_mean / faces;
   out["projected_per_pixel"] = {{"mean", summary.projected_mean}, {"max", summary.projected_max}};
   out["projected_fraction_mean"] = summary.projected_mean / faces;
   out["bound"] = {{"relative_mean", summary.relative_bound_mean}, {"relative_max", summary.relative_bound_max},
@@ -71,7 +85,7 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const LocalPassImage& im
 /// Per-pixel statistics for `export --stats`: faces projected and gathered (rays, for Monte
 /// Carlo), for the exact methods the certified bound on B (largest channel) and the bound
 /// relative to B, and 1 where a front-facing surface was gathered.
-ChannelImage pixel_channels(const LocalPassImage& image, bool certified) {
+ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   ChannelImage out{image.radiosity.width, image.radiosity.height, {}};
   const size_t n = image.surface.size();
   auto& projected = out.channels["projected"];
@@ -79,8 +93,10 @@ ChannelImage pixel_channels(const LocalPassImage& image, bool certified) {
   auto& surface = out.channels["surface"];
   for (auto* c : {&projected, &emitting, &surface}) c->resize(n);
   for (size_t i = 0; i < n; ++i) {
-    projected[i] = static_cast<float>(image.projected[i]);
-    emitting[i] = static_cast<float>(image.emitting[i]);
+    // Monte Carlo: the rays per pixel, as the file has always reported.
+    const int samples = image.surface[i] ? image.samples_per_pixel : 0;
+    projected[i] = static_cast<float>(image.samples_per_pixel > 0 ? samples : image.projected[i]);
+    emitting[i] = static_cast<float>(image.samples_per_pixel > 0 ? samples : image.gathered_exactly[i]);
     surface[i] = image.surface[i] ? 1.0f : 0.0f;
   }
   if (!certified) return out;
@@ -99,7 +115,8 @@ ChannelImage pixel_channels(const LocalPassImage& image, bool certified) {
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
-  const bool local = o.method == "hemisphere" || o.method == "vertex" || o.method == "montecarlo";
+  const std::optional<Method> method = parse_method(o.method);  // the local pass's; else a plain render
+  const bool local = method.has_value();
   const bool needs_solution = local || o.method == "patches";
   if (needs_solution && o.solution.empty()) {
     throw InputError("--method " + o.method + " needs --solution (a .vtp written by `radiosity solve`)");
@@ -119,12 +136,12 @@ void run_render(const RenderOptions& o) {
       ProgressBar bar("render");
       const double total = static_cast<double>(spec.width) * spec.height;
       const auto progress = [&](size_t done) { bar.update(done / total, std::to_string(done) + " pixels"); };
-      LocalPassImage result;
+      IrradianceImage result;
       std::optional<LocalPass> pass;
-      if (o.method == "montecarlo") {
+      if (!is_exact(*method)) {
         result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces), o.samples, progress);
       } else {
-        pass.emplace(scene, faces, o.method == "vertex" ? ExactMethod::vertex : ExactMethod::hemisphere);
+        pass.emplace(scene, faces, *method);
         result = render_local_pass(scene, caster, camera, *pass, o.tolerance, progress);
       }
       bar.finish();
@@ -132,7 +149,7 @@ void run_render(const RenderOptions& o) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       stats = local_pass_stats(o, result, static_cast<int>(faces.size()),
                                pass ? static_cast<int>(pass->octree().leaves().size()) : 0, seconds);
-      pixel_stats = pixel_channels(result, o.method != "montecarlo");
+      pixel_stats = pixel_channels(result, is_exact(*method));
     } else {
       image = render_patches(scene, solution, camera, !o.no_ambient);
     }
@@ -160,10 +177,10 @@ void run_render(const RenderOptions& o) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool exact = o.method == "hemisphere" || o.method == "vertex";
+  const bool exact = local && is_exact(*method);
   std::cerr << "render: " << o.method
             << (exact ? " at tolerance " + std::to_string(o.tolerance)
-                      : o.method == "montecarlo" ? " with " + std::to_string(o.samples) + " samples per pixel" : std::string())
+                      : local ? " with " + std::to_string(o.samples) + " samples per pixel" : std::string())
             << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote " << written << "\n";
   if (exact) {
     std::cerr << "render: faces gathered exactly per pixel: mean " << stats["emitting_per_pixel"]["mean"].get<double>()
@@ -186,7 +203,7 @@ void add_render_command(CLI::App& app, Run& run) {
                   "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution); "
                   "albedo: primary rays only (reflectance; emitters show their emission); "
                   "facing: albedo x |cos| to the eye, to see the geometry")
-      ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo", "patches", "albedo", "facing"}))
+      ->check(CLI::IsMember(render_method_names()))
       ->capture_default_str();
   add_tolerance_option(sub, &o->tolerance,
                        "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "

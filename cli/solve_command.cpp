@@ -9,7 +9,7 @@
 #include "cli/common.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
-#include "viz/solution_io.h"
+#include "formats/solution_io.h"
 
 namespace rad::cli {
 namespace {

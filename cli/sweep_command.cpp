@@ -1,5 +1,5 @@
 // `radiosity sweep SCENE --solution S.vtp -o DIR [--tolerances ...] [--methods ...] [--samples ...]`:
-// the accuracy-versus-tolerance experiment (viz/sweep.h): results.csv, images, error maps, charts.
+// the accuracy-versus-tolerance experiment (experiments/sweep.h): results.csv, images, error maps, charts.
 #include <algorithm>
 #include <chrono>
 #include <iostream>
@@ -7,21 +7,30 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "localpass/emitting_faces.h"
-#include "viz/sweep.h"
+#include "experiments/sweep.h"
+#include "localpass/method.h"
+#include "radiosity/solution_faces.h"
+#include "viz/offscreen_display.h"
+#include "viz/sweep_figures.h"
 
 namespace rad::cli {
 namespace {
 
 struct SweepOptions {
   std::string scene, solution, output;
+  std::vector<std::string> methods{"hemisphere", "montecarlo"};
+  std::string reference_method = "hemisphere";
   SweepSettings settings;
   int width = 0, height = 0;
   int threads = 0;
 };
 
-void run_sweep_command(const SweepOptions& o) {
+void run_sweep_command(SweepOptions o) {
   const auto start = std::chrono::steady_clock::now();
+  o.settings.methods.clear();
+  for (const std::string& name : o.methods) o.settings.methods.push_back(*parse_method(name));  // CLI11 checked
+  o.settings.reference_method = *parse_method(o.reference_method);
+  ensure_display();  // the charts and heat maps need one: fail now, not after the renders
   const ThreadLimit limit(o.threads);
   const Scene scene = load_scene_reporting(o.scene);
   const Camera camera(camera_for(scene, o.scene, "sweep", o.width, o.height));
@@ -29,7 +38,7 @@ void run_sweep_command(const SweepOptions& o) {
   const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
   std::cerr << "sweep: " << camera.width() << "x" << camera.height() << ", " << faces.size()
             << " elements; the reference is "
-            << (o.settings.reference_file.empty() ? o.settings.reference_method + " at tolerance 0"
+            << (o.settings.reference_file.empty() ? o.reference_method + " at tolerance 0"
                                                   : o.settings.reference_file.string())
             << "\n";
 
@@ -44,8 +53,10 @@ void run_sweep_command(const SweepOptions& o) {
     if (row.exact()) std::cerr << ", bound violations " << row.violations;
     std::cerr << "\n";
   };
-  const std::vector<SweepRow> rows = run_sweep(scene, faces, camera, o.settings, o.output, progress, on_row);
+  const SweepResult sweep = run_sweep(scene, faces, camera, o.settings, o.output, progress, on_row);
   bar.finish();
+  write_sweep_figures(o.output, sweep);
+  const std::vector<SweepRow>& rows = sweep.rows;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cerr << "sweep: " << rows.size() << " settings in " << seconds << " s; wrote " << o.output
             << "/results.csv, error_vs_tolerance.png, time_vs_tolerance.png, error_vs_time.png, reference.exr, "
@@ -63,9 +74,9 @@ void add_sweep_command(CLI::App& app, Run& run) {
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
   add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
-  sub->add_option("--methods", o->settings.methods, "Methods to run: hemisphere, vertex, montecarlo")
+  sub->add_option("--methods", o->methods, "Methods to run: hemisphere, vertex, montecarlo")
       ->delimiter(',')
-      ->check(CLI::IsMember({"hemisphere", "vertex", "montecarlo"}))
+      ->check(CLI::IsMember(method_names()))
       ->capture_default_str();
   sub->add_option("--tolerances", o->settings.tolerances,
                   "hemisphere/vertex: tolerances to run, each in [0, 0.99] (0: exact)")
@@ -76,9 +87,9 @@ void add_sweep_command(CLI::App& app, Run& run) {
       ->delimiter(',')
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
-  sub->add_option("--reference-method", o->settings.reference_method,
+  sub->add_option("--reference-method", o->reference_method,
                   "Exact method whose tolerance-0 image is the reference")
-      ->check(CLI::IsMember({"hemisphere", "vertex"}))
+      ->check(CLI::IsMember(exact_method_names()))
       ->capture_default_str();
   sub->add_option("--reference", o->settings.reference_file,
                   "An exact image of the same size from an earlier run (e.g. a sweep's reference.exr) to use as "

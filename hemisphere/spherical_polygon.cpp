@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/lambert.h"
+
 namespace rad::hemi {
 namespace {
 
@@ -178,28 +180,12 @@ std::vector<SphericalPolygon> subtract(const SphericalPolygon& a, const Spherica
   return out;
 }
 
-double lambert_loop(const std::vector<Vec3>& loop, const Vec3& n) {
-  double sum = 0;
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const Vec3& a = loop[i];
-    const Vec3& b = loop[(i + 1) % loop.size()];
-    const Vec3 c = a.cross(b);
-    const double c_norm = c.norm();
-    if (!(c_norm > 0)) continue;
-    // atan2(|a x b|, a . b): accurate for tiny and for nearly opposite arcs alike.
-    sum += std::atan2(c_norm, a.dot(b)) * n.dot(c) / c_norm;
-  }
-  return sum / (2 * std::numbers::pi);
-}
-
 double SphericalPolygon::form_factor(const Vec3& n) const {
   if (empty()) return 0.0;
   // Lambert with the stored edge normals: exact planes even for very short edges.
   double sum = 0;
   for (size_t i = 0; i < vertices_.size(); ++i) {
-    const Vec3& a = vertices_[i];
-    const Vec3& b = vertices_[(i + 1) % vertices_.size()];
-    sum += std::atan2(a.cross(b).norm(), a.dot(b)) * n.dot(normals_[i]);
+    sum += lambert_edge(vertices_[i], vertices_[(i + 1) % vertices_.size()], n, normals_[i]);
   }
   return std::abs(sum) / (2 * std::numbers::pi);
 }
@@ -209,19 +195,6 @@ double form_factor_with_holes(const std::vector<Vec3>& outer, const std::vector<
   double sum = lambert_loop(outer, n);
   for (const auto& hole : holes) sum += lambert_loop(hole, n);
   return std::abs(sum);
-}
-
-std::vector<Vec3> clip_to_upper_halfspace(const std::vector<Vec3>& polygon, const Vec3& n) {
-  std::vector<Vec3> out;
-  const size_t count = polygon.size();
-  for (size_t i = 0; i < count; ++i) {
-    const Vec3& a = polygon[i];
-    const Vec3& b = polygon[(i + 1) % count];
-    const double da = n.dot(a), db = n.dot(b);
-    if (da >= 0) out.push_back(a);
-    if ((da > 0 && db < 0) || (da < 0 && db > 0)) out.push_back(a + (da / (da - db)) * (b - a));
-  }
-  return out;
 }
 
 }  // namespace rad::hemi

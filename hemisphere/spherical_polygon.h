@@ -2,15 +2,13 @@
 /// Convex spherical polygons around a point x (x at the origin): the projection of a planar
 /// convex polygon onto the unit sphere (paper 004 §3; DESIGN.md §4). Every edge is the arc cut
 /// by a plane through x; side tests are one dot product with that plane's normal.
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <optional>
 #include <utility>
 #include <vector>
 
-namespace rad::hemi {
+#include "geometry/vec.h"
 
-using Vec3 = Eigen::Vector3d;
+namespace rad::hemi {
 
 /// A convex spherical polygon: unit vertices in order, every edge a minor arc, the whole inside
 /// an open hemisphere. Each edge also stores the unit normal of its plane through x, pointing
@@ -49,8 +47,8 @@ class SphericalPolygon {
   /// A direction strictly inside (the normalized vertex mean).
   Vec3 interior_direction() const;
 
-  /// Lambert's contour formula: the form factor of this spherical polygon for a receiver with
-  /// unit normal n at x, (1 / 2 pi) |sum_i angle(v_i, v_i+1) n . normal_i|. Assumes the
+  /// Lambert's contour formula (geometry/lambert.h) with the stored edge planes: the form
+  /// factor for a receiver with unit normal n at x, (1 / 2 pi) |sum_i angle(v_i, v_i+1) n . normal_i|. Assumes the
   /// polygon lies in the receiver's upper hemisphere (n . v >= 0 for all vertices).
   double form_factor(const Vec3& n) const;
 
@@ -80,19 +78,9 @@ std::vector<SphericalPolygon> intersect(const SphericalPolygon& a, const Spheric
 /// plane count as on it.
 std::vector<SphericalPolygon> subtract(const SphericalPolygon& a, const SphericalPolygon& b);
 
-/// Signed contribution of one closed loop to Lambert's formula (without the absolute value):
-/// (1 / 2 pi) sum_i angle(v_i, v_i+1) n . unit(v_i x v_i+1). Loops of opposite orientation have
-/// opposite signs, so a polygon with holes is its outer loop plus its holes listed the other way
-/// round: FF = |sum over loops|. Vertices are directions from x in n's upper hemisphere.
-double lambert_loop(const std::vector<Vec3>& loop, const Vec3& n);
-
 /// Form factor of a spherical polygon with holes: |lambert_loop(outer) + sum lambert_loop(hole)|
-/// where every hole runs opposite to the outer loop.
+/// (geometry/lambert.h) where every hole runs opposite to the outer loop.
 double form_factor_with_holes(const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes,
                               const Vec3& n);
-
-/// Clips a planar polygon (vertices relative to x) to x's upper half-space n . p >= 0, exactly
-/// in 3D before any projection. Returns the clipped polygon (maybe with < 3 vertices).
-std::vector<Vec3> clip_to_upper_halfspace(const std::vector<Vec3>& polygon, const Vec3& n);
 
 }  // namespace rad::hemi

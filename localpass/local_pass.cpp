@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "radiosity/form_factor.h"
+#include "geometry/lambert.h"
 
 namespace rad {
 namespace {
@@ -15,24 +15,18 @@ double unoccluded_form_factor(const EmittingFace& face, const Vec3& x, const Vec
 
 }  // namespace
 
-std::vector<OctreeItem> octree_items(const Scene& scene, const std::vector<EmittingFace>& faces) {
+std::vector<OctreeItem> octree_items(const std::vector<EmittingFace>& faces) {
   std::vector<OctreeItem> items;
   items.reserve(faces.size());
-  for (const EmittingFace& f : faces) items.push_back({f.vertices, scene.polygons[f.polygon].normal, f.exitance});
+  for (const EmittingFace& f : faces) items.push_back({f.vertices, f.normal, f.exitance});
   return items;
 }
 
-LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, ExactMethod method,
+LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
                      const LocalPassSettings& settings)
-    : faces_(std::move(faces)), method_(method), occlusion_culling_(settings.occlusion_culling),
-      octree_(octree_items(scene, faces_), settings.octree),
-      culling_(scene, faces_, octree_) {
-  if (method_ == ExactMethod::hemisphere) {
-    hemisphere_.emplace(scene, faces_);
-  } else {
-    tracer_.emplace(scene, faces_);
-  }
-}
+    : faces_(std::move(faces)), occlusion_culling_(settings.occlusion_culling),
+      octree_(octree_items(faces_), settings.octree), gatherer_(make_exact_gatherer(method, scene, faces_)),
+      culling_(scene, faces_, octree_) {}
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
   LocalPassResult result;
@@ -46,7 +40,7 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
     unoccluded += ff * faces_[f].exitance;
     unoccluded_covered += ff;
   }
-  result.emitting = result.unoccluded = static_cast<int>(split.unoccluded.size());
+  result.gathered_exactly = result.unoccluded = static_cast<int>(split.unoccluded.size());
 
   // The other faces by leaf, in order of decreasing bound: the sum of their unoccluded terms.
   struct Entry {
@@ -77,9 +71,10 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
   double covered = unoccluded_covered;  // form factor covered by visible parts gathered exactly
   size_t next = 0;
   // What the unselected faces can still add, certified (see the header).
+  const bool knows_coverage = gatherer_->reports_coverage();
   const auto remainder = [&] {
     Rgb r = bound_sum[next];
-    if (hemisphere_) r = r.cwiseMin(bmax_max[next] * std::max(0.0, 1 - covered));
+    if (knows_coverage) r = r.cwiseMin(bmax_max[next] * std::max(0.0, 1 - covered));
     return r;
   };
   const auto done = [&] {
@@ -88,58 +83,42 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
     const Rgb half = 0.5 * remainder();
     return half.maxCoeff() <= tolerance * (exact + half).maxCoeff();
   };
-  std::optional<HemisphereGatherer::Session> session;
-  if (hemisphere_ && !entries.empty()) session.emplace(*hemisphere_, x, n);
-  std::vector<char> radiating(faces_.size(), 0);
-  Rgb traced = Rgb::Zero();    // vertex tracing: the sum over its traces
+  std::unique_ptr<ExactGatherSession> session;
+  if (!entries.empty()) session = gatherer_->start(x, n);
   while (!done()) {
+    // Choose the next batch of leaf groups.
     std::vector<int> batch;
     if (!(tolerance > 0)) {
       while (next < entries.size()) batch.push_back(entries[next++].group);
-    } else if (session) {
+    } else if (gatherer_->incremental()) {
       // Projection is incremental, so batches may be small: enough to halve the bound sum.
       const double target = 0.5 * bound_sum[next].maxCoeff();
       do {
         batch.push_back(entries[next++].group);
       } while (next < entries.size() && bound_sum[next].maxCoeff() > target);
     } else {
-      // Each trace starts afresh: aim straight at the stopping rule with what is known of H,
-      // R <= 2 T H / (1 - T) (before the first trace, H is at least the unoccluded part).
+      // Each step starts afresh: aim straight at the stopping rule with what is known of H,
+      // R <= 2 T H / (1 - T) (before the first step, H is at least the unoccluded part).
       const double target = 2 * tolerance * exact.maxCoeff() / std::max(1 - tolerance, 1e-12);
       do {
         batch.push_back(entries[next++].group);
       } while (next < entries.size() && bound_sum[next].maxCoeff() > target);
     }
-    std::vector<int> faces;  // the batch's faces and whatever may hide them
+    // Gather the batch's faces exactly, with whatever may hide them.
+    std::vector<int> radiating, occluders;
     for (const int g : batch) {
       const OcclusionSplit::Group& group = split.shadowed[g];
-      for (const int f : group.faces) radiating[f] = 1;
-      faces.insert(faces.end(), group.faces.begin(), group.faces.end());
-      culling_.occluders(x, group, &faces);
-      result.emitting += static_cast<int>(group.faces.size());
+      radiating.insert(radiating.end(), group.faces.begin(), group.faces.end());
+      culling_.occluders(x, group, &occluders);
     }
+    result.gathered_exactly += static_cast<int>(radiating.size());
     result.voxels += static_cast<int>(batch.size());
     ++result.gathers;
-    if (session) {
-      session->add(faces);
-      double session_covered = 0;
-      exact = unoccluded + session->irradiance(radiating, &session_covered);
-      covered = unoccluded_covered + session_covered;
-    } else {
-      std::ranges::sort(faces);
-      faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-      VertexTracer::Options options;
-      options.emitting = &radiating;
-      options.faces = &faces;
-      traced += tracer_->gather(x, n, options).irradiance;
-      exact = unoccluded + traced;
-      result.projected += static_cast<int>(faces.size());
-      for (const int g : batch) {
-        for (const int f : split.shadowed[g].faces) radiating[f] = 0;
-      }
-    }
+    const ExactGatherTotal total = session->step(radiating, occluders);
+    exact = unoccluded + total.irradiance;
+    if (total.covered) covered = unoccluded_covered + *total.covered;
   }
-  if (session) result.projected = session->added();
+  if (session) result.projected = session->projected();
   result.bound = 0.5 * remainder();
   result.irradiance = exact + result.bound;
   return result;

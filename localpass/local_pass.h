@@ -22,19 +22,17 @@
 /// The pass reports H_S + R/2 with the bound R/2, and stops when
 ///   max_c R_c / 2 <= tolerance * max_c (H_S + R/2)_c,
 /// so the relative error (against the brightest channel) is at most the tolerance.
-#include <optional>
+#include <memory>
 #include <vector>
 
-#include "localpass/emitting_faces.h"
-#include "localpass/hemisphere_gather.h"
+#include "geometry/emitting_face.h"
+#include "geometry/exact_gatherer.h"
+#include "localpass/method.h"
 #include "localpass/occlusion_culling.h"
-#include "localpass/vertex_tracing.h"
 #include "octree/octree.h"
 #include "scene/scene.h"
 
 namespace rad {
-
-enum class ExactMethod { hemisphere, vertex };
 
 struct LocalPassSettings {
   OctreeSettings octree;
@@ -47,7 +45,7 @@ struct LocalPassSettings {
 struct LocalPassResult {
   Rgb irradiance = Rgb::Zero();  ///< H(x) estimate [W/m^2]: the exact part plus half the remainder bound
   Rgb bound = Rgb::Zero();       ///< Certified: |H(x) - irradiance| <= bound, per channel
-  int emitting = 0;              ///< Faces gathered exactly (unoccluded or radiating in a gather)
+  int gathered_exactly = 0;      ///< Faces gathered exactly (unoccluded or radiating in a gather)
   int unoccluded = 0;            ///< Of those, faces nothing can hide (Lambert's formula alone)
   int projected = 0;             ///< Faces projected (hemisphere: selected + possible occluders;
                                  ///< vertex tracing: the same, summed over its traces)
@@ -56,13 +54,13 @@ struct LocalPassResult {
 };
 
 /// The octree's items: one per face, with its polygon's normal and its exitance.
-std::vector<OctreeItem> octree_items(const Scene& scene, const std::vector<EmittingFace>& faces);
+std::vector<OctreeItem> octree_items(const std::vector<EmittingFace>& faces);
 
 class LocalPass {
  public:
-  /// `faces` are typically faces_from_solution (every element radiates its radiosity).
-  LocalPass(const Scene& scene, std::vector<EmittingFace> faces, ExactMethod method,
-            const LocalPassSettings& settings = {});
+  /// `faces` are typically faces_from_solution (every element radiates its radiosity);
+  /// `method` picks the exact gatherer (hemisphere or vertex; Error for Monte Carlo).
+  LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method, const LocalPassSettings& settings = {});
 
   /// Irradiance at x for unit normal n, to the given relative tolerance (0: exact, every face
   /// that may be hidden radiating in one gather). Thread-safe.
@@ -73,11 +71,9 @@ class LocalPass {
 
  private:
   std::vector<EmittingFace> faces_;
-  ExactMethod method_;
   bool occlusion_culling_;
   Octree octree_;
-  std::optional<HemisphereGatherer> hemisphere_;
-  std::optional<VertexTracer> tracer_;
+  std::unique_ptr<ExactGatherer> gatherer_;
   OcclusionCulling culling_;
 };
 

@@ -1,11 +1,12 @@
 #pragma once
-/// Module `localpass` (rad_localpass): everything that runs per pixel or per probe point
-/// (paper 004 Fig. 6; DESIGN.md §1 step 3): the error-bounded driver that gathers voxel by voxel
-/// and stops at the tolerance, the hemisphere gatherer, the vertex-tracing gatherer (paper 001),
-/// a Monte Carlo baseline, the primary-ray renders (albedo, facing) and the classic Gouraud display
-/// of a solution (patches).
+/// Module `localpass` (rad_localpass): the error-bounded driver of paper 004 Fig. 6 (DESIGN.md
+/// §1 step 3): at a point, split the faces by shaft culling over the octree into those nothing
+/// can hide and groups that may be hidden (occlusion_culling.h, shaft.h), gather the groups in
+/// order of decreasing bound through an exact gatherer, and stop at the tolerance with a
+/// certified bound (local_pass.h). Also the method names (method.h) and the Monte Carlo
+/// baseline (monte_carlo.h).
 ///
-/// May use: octree, hemisphere, radiosity, scene, TBB.
-#include "localpass/albedo_render.h"
-#include "localpass/image.h"
-#include "localpass/patch_render.h"
+/// May use: octree, hemisphere, vertex, radiosity, scene, geometry.
+#include "localpass/local_pass.h"
+#include "localpass/method.h"
+#include "localpass/monte_carlo.h"

@@ -18,7 +18,7 @@ MonteCarloGatherer::MonteCarloGatherer(const Scene& scene, const std::vector<Emi
     exitance_.push_back(f.exitance);
   }
   caster_ = std::make_unique<RayCaster>(faces_scene_);
-  offset_ = 1e-6 * scene.bounds().diagonal();
+  offset_ = scene.tolerance().ray_offset;
 }
 
 MonteCarloGatherer::~MonteCarloGatherer() = default;

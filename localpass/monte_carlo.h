@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "localpass/emitting_faces.h"
+#include "scene/polygon_faces.h"
 #include "scene/ray_caster.h"
 #include "scene/scene.h"
 

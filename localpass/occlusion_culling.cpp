@@ -39,9 +39,10 @@ bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, cons
 
 OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces, const Octree& octree)
     : faces_(faces), octree_(octree) {
-  const double diagonal = scene.bounds().diagonal();
-  in_plane_ = 1e-12 * diagonal;
-  pad_ = 1e-9 * diagonal;
+  // The gatherers' own tolerance (Scene::tolerance()): the culling is exact only with it.
+  const Tolerance tolerance = scene.tolerance();
+  in_plane_ = tolerance.in_plane;
+  pad_ = tolerance.pad;
   polygons_.resize(scene.polygons.size());
   for (size_t p = 0; p < scene.polygons.size(); ++p) {
     const Polygon& polygon = scene.polygons[p];

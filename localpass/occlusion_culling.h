@@ -23,7 +23,7 @@
 
 #include <Eigen/Geometry>
 
-#include "localpass/emitting_faces.h"
+#include "scene/polygon_faces.h"
 #include "octree/octree.h"
 #include "scene/scene.h"
 

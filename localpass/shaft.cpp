@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "geometry/clip.h"
+
 namespace rad {
 
 Shaft::Shaft(const Vec3& x, Eigen::AlignedBox3d box, double pad) : pad_(pad) {
@@ -77,13 +79,10 @@ bool Shaft::may_meet(const std::vector<Vec3>& vertices, const Eigen::AlignedBox3
     const Plane& p = planes_[i];
     const double limit = p.offset + pad_;
     size_t kept = 0;
-    for (size_t j = 0; j < count; ++j) {
-      const Vec3& a = polygon[j];
-      const Vec3& b = polygon[(j + 1) % count];
-      const double da = p.normal.dot(a) - limit, db = p.normal.dot(b) - limit;
-      if (da <= 0) clipped[kept++] = a;
-      if ((da < 0 && db > 0) || (da > 0 && db < 0)) clipped[kept++] = a + (da / (da - db)) * (b - a);
-    }
+    // Inside is normal . v <= limit: the distance is the negated excess (negation is exact).
+    clip_loop(
+        polygon, count, [&](const Vec3& v) { return -(p.normal.dot(v) - limit); }, interpolated_crossing,
+        [&](const Vec3& v, int) { clipped[kept++] = v; });
     std::swap(polygon, clipped);
     count = kept;
   }

@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "scene/types.h"
+#include "geometry/vec.h"
 
 namespace rad {
 

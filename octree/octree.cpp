@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "radiosity/form_factor.h"
+#include "geometry/lambert.h"
 
 namespace rad {
 namespace {

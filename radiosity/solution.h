@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/types.h"
+#include "geometry/vec.h"
 
 namespace rad {
 

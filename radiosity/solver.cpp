@@ -9,7 +9,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "radiosity/form_factor.h"
+#include "geometry/lambert.h"
+#include "geometry/plane.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
@@ -62,7 +63,7 @@ class Shooter {
   double visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                              uint64_t key) const {
     if (polygon == shooter.polygon) return 0;  // a planar polygon cannot see itself
-    if (!emitter_faces(shooter.corners[0], shooter.normal, x)) return 0;
+    if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return 0;
     const double ff = point_polygon_form_factor(x, n, shooter.corners);
     if (!(ff > 0)) return 0;
     uint64_t state = mix(seed_ ^ mix(key));
@@ -190,7 +191,7 @@ class ProgressiveSolver {
   /// Returns the number of elements split.
   int refine_by_neighbours() {
     if (!refinement_enabled()) return 0;
-    const ElementMesh mesh(solution_, 1e-9 * diagonal_);
+    const ElementMesh mesh(solution_, scene_.tolerance().pad);
     const PatchMesh& m = mesh.mesh();
     std::vector<char> split(mesh.face_count(), 0);
     tbb::parallel_for(0, mesh.face_count(), [&](int f) {

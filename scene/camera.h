@@ -1,7 +1,7 @@
 #pragma once
 /// Pinhole camera of the scene file's "camera" block (DESIGN.md §5).
 #include "scene/ray.h"
-#include "scene/types.h"
+#include "geometry/vec.h"
 
 namespace rad {
 

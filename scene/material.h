@@ -2,7 +2,7 @@
 /// Lambertian materials (DESIGN.md §3, §5).
 #include <string>
 
-#include "scene/types.h"
+#include "geometry/vec.h"
 
 namespace rad {
 

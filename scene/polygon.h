@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "scene/types.h"
+#include "geometry/vec.h"
 
 namespace rad {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// Rays in world space, shared by the camera, the ray caster and the gatherers.
-#include "scene/types.h"
+#include "geometry/vec.h"
 
 namespace rad {
 

@@ -1,11 +1,17 @@
 #pragma once
-/// The scene model: materials, planar polygons, an optional camera, and what loading noticed.
+/// Module `scene` (rad_scene): the scene model (materials, planar polygons, an optional camera,
+/// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes
+/// through OpenMesh) and their validation, the camera, ray casting (Embree behind
+/// ray_caster.h), and the polygons as gatherer faces (polygon_faces.h).
+///
+/// May use: geometry, OpenMesh, Embree (in .cpp files only), nlohmann-json.
 #include <filesystem>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "geometry/tolerance.h"
 #include "scene/camera.h"
 #include "scene/material.h"
 #include "scene/polygon.h"
@@ -42,6 +48,9 @@ struct Scene {
   /// "objects[2] \"tall block\" polygon 5" (plus " triangle 1" for a split polygon).
   std::string describe_polygon(int polygon) const;
   Bounds bounds() const;
+  /// The tolerance policy every gatherer and the culling use (geometry/tolerance.h), from the
+  /// diagonal of bounds().
+  Tolerance tolerance() const { return Tolerance::for_scene_size(bounds().diagonal()); }
   double total_area() const;
   /// Sum of emission * area over polygons: emitted power in W when lengths are metres.
   Rgb emitted_power() const;

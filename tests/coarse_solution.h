@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "localpass/emitting_faces.h"
+#include "radiosity/solution_faces.h"
+#include "scene/polygon_faces.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"

@@ -20,7 +20,7 @@
 #include <string>
 
 #include "scene/error.h"
-#include "viz/atomic_file.h"
+#include "formats/atomic_file.h"
 
 namespace rad {
 namespace {

@@ -23,10 +23,10 @@
 
 #include "scene/error.h"
 #include "scene/polygon.h"
-#include "viz/atomic_file.h"
-#include "viz/image_io.h"
+#include "formats/atomic_file.h"
+#include "formats/image_io.h"
 #include "viz/offscreen_display.h"
-#include "viz/patch_mesh_polydata.h"
+#include "formats/patch_mesh_polydata.h"
 
 namespace rad {
 namespace {

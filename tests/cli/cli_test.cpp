@@ -21,8 +21,8 @@
 #include <Eigen/Core>
 
 #include "tests/bad_scene_cases.h"
-#include "viz/image_io.h"
-#include "viz/solution_io.h"
+#include "formats/image_io.h"
+#include "formats/solution_io.h"
 
 namespace {
 

@@ -1,5 +1,7 @@
 #include "hemisphere/spherical_polygon.h"
 
+#include "geometry/clip.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,7 +65,7 @@ TEST(SphericalPolygon, DegenerateInputIsEmpty) {
 }
 
 TEST(SphericalPolygon, ClipsAtTheTangentPlaneExactlyIn3D) {
-  const auto clipped = clip_to_upper_halfspace({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}}, Vec3::UnitZ());
+  const auto clipped = clip_to_halfspace({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}}, Vec3::Zero(), Vec3::UnitZ());
   ASSERT_EQ(clipped.size(), 4u);
   EXPECT_EQ(clipped[0], Vec3(1, 1, 0));  // the first crossing, then the kept upper vertices
   EXPECT_EQ(clipped[3], Vec3(0, 1, 0));

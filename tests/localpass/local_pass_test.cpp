@@ -2,12 +2,14 @@
 // and the certified bound is never violated.
 #include "localpass/local_pass.h"
 
+#include "hemisphere/hemisphere_gatherer.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <random>
 
-#include "localpass/local_pass_render.h"
+#include "render/irradiance_render.h"
 #include "localpass/monte_carlo.h"
 #include "scene/ray_caster.h"
 #include "tests/coarse_solution.h"
@@ -41,11 +43,11 @@ std::vector<SurfacePoint> surface_points(int count, uint64_t seed) {
 TEST(LocalPass, ToleranceZeroIsTheExactGatherWithNoBound) {
   // The plain gather over every face is the reference (more in occlusion_culling_test.cpp).
   const CornellSolution& s = cornell_solution();
-  const LocalPass pass(s.scene, s.faces, ExactMethod::hemisphere);
+  const LocalPass pass(s.scene, s.faces, Method::hemisphere);
   LocalPassSettings no_culling;
   no_culling.occlusion_culling = false;
-  const LocalPass naive(s.scene, s.faces, ExactMethod::hemisphere, no_culling);
-  const HemisphereGatherer plain(s.scene, s.faces);
+  const LocalPass naive(s.scene, s.faces, Method::hemisphere, no_culling);
+  const HemisphereGatherer plain(s.faces, s.scene.tolerance());
   int culled = 0;
   for (const SurfacePoint& p : surface_points(50, 1)) {
     const LocalPassResult r = pass.gather(p.x, p.n, 0);
@@ -63,8 +65,8 @@ TEST(LocalPass, ToleranceZeroIsTheExactGatherWithNoBound) {
 
 TEST(LocalPass, HemisphereAndVertexAgreeAtToleranceZero) {
   const CornellSolution& s = cornell_solution();
-  const LocalPass hemisphere(s.scene, s.faces, ExactMethod::hemisphere);
-  const LocalPass vertex(s.scene, s.faces, ExactMethod::vertex);
+  const LocalPass hemisphere(s.scene, s.faces, Method::hemisphere);
+  const LocalPass vertex(s.scene, s.faces, Method::vertex);
   int disagreements = 0;
   for (const SurfacePoint& p : surface_points(200, 2)) {
     const Rgb h = hemisphere.gather(p.x, p.n, 0).irradiance, v = vertex.gather(p.x, p.n, 0).irradiance;
@@ -82,7 +84,7 @@ TEST(LocalPass, CertifiedBoundHoldsAtEveryToleranceForBothMethods) {
   // (bound <= T * brightest channel); larger tolerances gather fewer faces.
   const CornellSolution& s = cornell_solution();
   const std::vector<SurfacePoint> points = surface_points(120, 3);
-  for (const ExactMethod method : {ExactMethod::hemisphere, ExactMethod::vertex}) {
+  for (const Method method : {Method::hemisphere, Method::vertex}) {
     const LocalPass pass(s.scene, s.faces, method);
     std::vector<Rgb> exact;
     for (const SurfacePoint& p : points) exact.push_back(pass.gather(p.x, p.n, 0).irradiance);
@@ -99,7 +101,7 @@ TEST(LocalPass, CertifiedBoundHoldsAtEveryToleranceForBothMethods) {
                         << " bound " << r.bound.transpose();
         }
         if (r.bound.maxCoeff() > tolerance * r.irradiance.maxCoeff() * (1 + 1e-12) + 1e-15) ++stopped_late;
-        emitting += r.emitting;
+        emitting += r.gathered_exactly;
       }
       EXPECT_EQ(violations, 0) << "tolerance " << tolerance;
       EXPECT_EQ(stopped_late, 0) << "tolerance " << tolerance;
@@ -112,7 +114,7 @@ TEST(LocalPass, CertifiedBoundHoldsAtEveryToleranceForBothMethods) {
 }
 
 /// A small image of the Cornell box from its own camera.
-LocalPassImage render_small(const LocalPass& pass, double tolerance, int threads) {
+IrradianceImage render_small(const LocalPass& pass, double tolerance, int threads) {
   const CornellSolution& s = cornell_solution();
   CameraSpec spec = *s.scene.camera;
   spec.width = 12;
@@ -123,8 +125,8 @@ LocalPassImage render_small(const LocalPass& pass, double tolerance, int threads
 
 TEST(LocalPass, CornellImagesOfBothMethodsAgreePerPixelAtToleranceZero) {
   const CornellSolution& s = cornell_solution();
-  const LocalPassImage h = render_small(LocalPass(s.scene, s.faces, ExactMethod::hemisphere), 0, 2);
-  const LocalPassImage v = render_small(LocalPass(s.scene, s.faces, ExactMethod::vertex), 0, 2);
+  const IrradianceImage h = render_small(LocalPass(s.scene, s.faces, Method::hemisphere), 0, 2);
+  const IrradianceImage v = render_small(LocalPass(s.scene, s.faces, Method::vertex), 0, 2);
   int lit = 0;
   for (size_t i = 0; i < h.radiosity.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
@@ -138,11 +140,11 @@ TEST(LocalPass, CornellImagesOfBothMethodsAgreePerPixelAtToleranceZero) {
 
 TEST(LocalPass, ImagesAreBitwiseTheSameForAnyThreadCount) {
   const CornellSolution& s = cornell_solution();
-  const LocalPass pass(s.scene, s.faces, ExactMethod::hemisphere);
-  const LocalPassImage one = render_small(pass, 0.1, 1), two = render_small(pass, 0.1, 2);
+  const LocalPass pass(s.scene, s.faces, Method::hemisphere);
+  const IrradianceImage one = render_small(pass, 0.1, 1), two = render_small(pass, 0.1, 2);
   EXPECT_EQ(one.radiosity.pixels, two.radiosity.pixels);
   EXPECT_EQ(one.bound.pixels, two.bound.pixels);
-  EXPECT_EQ(one.emitting, two.emitting);
+  EXPECT_EQ(one.gathered_exactly, two.gathered_exactly);
 }
 
 TEST(MonteCarlo, ConvergesToTheExactGatherAndIsSeeded) {
@@ -150,7 +152,7 @@ TEST(MonteCarlo, ConvergesToTheExactGatherAndIsSeeded) {
   // an estimate is a function of its seed alone.
   const CornellSolution& s = cornell_solution();
   const MonteCarloGatherer mc(s.scene, s.faces);
-  const LocalPass exact(s.scene, s.faces, ExactMethod::hemisphere);
+  const LocalPass exact(s.scene, s.faces, Method::hemisphere);
   const std::vector<SurfacePoint> points = surface_points(60, 4);
   std::vector<double> h;
   for (const SurfacePoint& p : points) h.push_back(exact.gather(p.x, p.n, 0).irradiance.sum());

@@ -3,6 +3,9 @@
 // plain gatherers over every face, on scenes built to break it.
 #include "localpass/occlusion_culling.h"
 
+#include "hemisphere/hemisphere_gatherer.h"
+#include "vertex/vertex_tracer.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -66,10 +69,10 @@ struct Differential {
   int points = 0, failures = 0, culled_points = 0;
   void compare(const Scene& scene, const std::vector<EmittingFace>& faces, const std::vector<test::ProbeSite>& sites,
                const std::string& label) {
-    const HemisphereGatherer hemisphere(scene, faces);
+    const HemisphereGatherer hemisphere(faces, scene.tolerance());
     const VertexTracer tracer(scene, faces);
-    const LocalPass hemisphere_pass(scene, faces, ExactMethod::hemisphere);
-    const LocalPass vertex_pass(scene, faces, ExactMethod::vertex);
+    const LocalPass hemisphere_pass(scene, faces, Method::hemisphere);
+    const LocalPass vertex_pass(scene, faces, Method::vertex);
     for (const test::ProbeSite& s : sites) {
       ++points;
       const LocalPassResult h = hemisphere_pass.gather(s.x, s.n, 0), v = vertex_pass.gather(s.x, s.n, 0);
@@ -131,7 +134,7 @@ TEST(OcclusionCulling, NothingInsideAClosedCubeIsOccluded) {
   // (Not so in the Cornell box: its left wall is folded into a ridge, whose two triangles do
   // hide slivers of each other.)
   const test::SolvedScene s = test::solve_coarse("closed-cube");
-  const Octree tree(octree_items(s.scene, s.faces));
+  const Octree tree(octree_items(s.faces));
   const OcclusionCulling culling(s.scene, s.faces, tree);
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.01, 0.99);

@@ -6,10 +6,10 @@
 
 #include <random>
 
-#include "localpass/emitting_faces.h"
-#include "localpass/hemisphere_gather.h"
+#include "scene/polygon_faces.h"
+#include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/local_pass.h"
-#include "radiosity/form_factor.h"
+#include "geometry/lambert.h"
 #include "tests/coarse_solution.h"
 
 namespace rad {
@@ -19,7 +19,7 @@ const test::SolvedScene& cornell() { return test::coarse_cornell(); }
 
 TEST(Octree, EveryItemInExactlyOneLeafInsideItsBounds) {
   const test::SolvedScene& c = cornell();
-  const Octree tree(octree_items(c.scene, c.faces));
+  const Octree tree(octree_items(c.faces));
   std::vector<int> seen(c.faces.size(), 0);
   for (const int v : tree.leaves()) {
     const Voxel& leaf = tree.voxels()[v];
@@ -92,7 +92,7 @@ TEST(Octree, BoundsCoverWhatEachVoxelCanSendOverRandomTriples) {
   // contribution of the voxel's items, each radiating its radiosity, occluded by one another
   // (nothing else can add light). Exact by the hemisphere gatherer over the voxel's faces.
   const test::SolvedScene& c = cornell();
-  const Octree tree(octree_items(c.scene, c.faces));
+  const Octree tree(octree_items(c.faces));
   const auto& voxels = tree.voxels();
   std::vector<int> nonempty;
   std::vector<std::unique_ptr<HemisphereGatherer>> gatherers(voxels.size());
@@ -101,7 +101,7 @@ TEST(Octree, BoundsCoverWhatEachVoxelCanSendOverRandomTriples) {
     nonempty.push_back(static_cast<int>(v));
     std::vector<EmittingFace> faces;
     for (const int i : tree.items_below(static_cast<int>(v))) faces.push_back(c.faces[i]);
-    gatherers[v] = std::make_unique<HemisphereGatherer>(c.scene, std::move(faces));
+    gatherers[v] = std::make_unique<HemisphereGatherer>(std::move(faces), c.scene.tolerance());
   }
   const auto box = c.scene.bounds();
   std::mt19937_64 rng(11);

@@ -15,7 +15,8 @@
 
 #include <filesystem>
 
-#include "localpass/emitting_faces.h"
+#include "radiosity/solution_faces.h"
+#include "scene/polygon_faces.h"
 #include "localpass/local_pass.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
@@ -23,7 +24,7 @@
 #include "scene/scene_loader.h"
 #include "tests/scratch_dir.h"
 #include "tests/viz/png_inspect.h"
-#include "viz/solution_io.h"
+#include "formats/solution_io.h"
 #include "viz/vtk_export.h"
 
 namespace rad {
@@ -52,7 +53,7 @@ TEST(VtkExport, OctreeReadsBackAsHexahedraWithItsArrays) {
   const fs::path dir = test::scratch_dir("viz_octree");
   const Solved& s = light_over_floor();
   const std::vector<EmittingFace> faces = faces_from_solution(s.scene, s.solution);
-  const Octree octree(octree_items(s.scene, faces));
+  const Octree octree(octree_items(faces));
   write_octree_vtu(dir / "octree.vtu", octree);
 
   vtkNew<vtkXMLUnstructuredGridReader> reader;

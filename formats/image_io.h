@@ -1,0 +1,39 @@
+#pragma once
+/// Image files: OpenEXR for linear results (float RGB), PNG for tone-mapped previews.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "formats/image.h"
+
+namespace rad {
+
+/// Writes linear float RGB (channels R, G, B, ZIP compression) atomically. Throws Error.
+void write_exr(const std::filesystem::path& file, const Image& image);
+
+/// Reads the R, G, B channels of an OpenEXR file (missing channels read as 0). Throws
+/// InputError naming the file when it is missing or not an OpenEXR file.
+Image read_exr(const std::filesystem::path& file);
+
+/// Named float channels of one size (per-pixel statistics, say), rows from the top.
+struct ChannelImage {
+  int width = 0, height = 0;
+  std::map<std::string, std::vector<float>> channels;
+};
+
+/// Writes every channel as FLOAT, ZIP compressed, atomically. Throws Error (also when a
+/// channel's size is not width x height).
+void write_exr_channels(const std::filesystem::path& file, const ChannelImage& image);
+
+/// Reads every channel of an OpenEXR file as float. Throws InputError naming the file.
+ChannelImage read_exr_channels(const std::filesystem::path& file);
+
+/// 8-bit sRGB encoding of a linear value scaled by 2^exposure, clamped to [0, 1].
+unsigned char to_srgb8(double linear, double exposure);
+
+/// Writes a tone-mapped preview (linear * 2^exposure, clamped, sRGB-encoded) as an 8-bit RGB
+/// PNG, atomically. Throws Error.
+void write_png_preview(const std::filesystem::path& file, const Image& image, double exposure = 0);
+
+}  // namespace rad

@@ -1,0 +1,95 @@
+#include "formats/points_csv.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "scene/error.h"
+
+namespace rad {
+namespace {
+
+std::string trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\r");
+  return s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) fields.push_back(trim(field));
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+/// Parses a whole field as a double; false when it is not one number.
+bool parse_number(const std::string& field, double* value) {
+  if (field.empty()) return false;
+  char* end = nullptr;
+  *value = std::strtod(field.c_str(), &end);
+  return end == field.c_str() + field.size();
+}
+
+}  // namespace
+
+std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot open points file");
+  std::vector<ProbePoint> points;
+  std::string line;
+  bool first_row = true;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string text = trim(line);
+    if (text.empty() || text[0] == '#') continue;
+    const std::string where = file.string() + ":" + std::to_string(number) + ": ";
+    const std::vector<std::string> fields = split_fields(text);
+    double v[6];
+    bool numeric = fields.size() == 6;
+    for (size_t i = 0; numeric && i < 6; ++i) numeric = parse_number(fields[i], &v[i]);
+    if (!numeric && first_row) {
+      first_row = false;  // a header
+      continue;
+    }
+    first_row = false;
+    if (fields.size() != 6) {
+      throw InputError(where + "expected 6 fields x,y,z,nx,ny,nz, got " + std::to_string(fields.size()));
+    }
+    for (size_t i = 0; i < 6; ++i) {
+      if (!parse_number(fields[i], &v[i])) throw InputError(where + "field " + std::to_string(i + 1) + " '" + fields[i] + "' is not a number");
+      if (!std::isfinite(v[i])) throw InputError(where + "field " + std::to_string(i + 1) + " is not finite");
+    }
+    const Vec3 n(v[3], v[4], v[5]);
+    if (!(n.norm() > 0)) throw InputError(where + "the normal (nx, ny, nz) is zero");
+    points.push_back({Vec3(v[0], v[1], v[2]), n.normalized()});
+  }
+  if (points.empty()) throw InputError(file.string() + ": no points");
+  return points;
+}
+
+void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points, const std::vector<Rgb>& irradiance,
+                     const std::vector<double>& bound) {
+  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound\n";
+  std::string row;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const ProbePoint& p = points[i];
+    const Rgb& e = irradiance[i];
+    row.clear();
+    for (const double v : {p.x.x(), p.x.y(), p.x.z(), p.n.x(), p.n.y(), p.n.z(), e.x(), e.y(), e.z(), bound[i]}) {
+      // The shortest text that reads back to the same double.
+      char text[32];
+      const auto end = std::to_chars(text, text + sizeof(text), v).ptr;
+      if (!row.empty()) row.push_back(',');
+      row.append(text, end);
+    }
+    row.push_back('\n');
+    out << row;
+  }
+}
+
+}  // namespace rad

@@ -1,0 +1,28 @@
+#pragma once
+/// Probe points in and irradiance out, as CSV (DESIGN.md §5).
+#include <filesystem>
+#include <iosfwd>
+#include <vector>
+
+#include "geometry/vec.h"
+
+namespace rad {
+
+/// A point where irradiance is wanted, with its receiver normal (unit length after reading).
+struct ProbePoint {
+  Vec3 x;
+  Vec3 n;
+};
+
+/// Reads rows `x,y,z,nx,ny,nz`. A first row that is not numeric is a header; blank lines and
+/// lines starting with '#' are skipped; spaces around fields are allowed. Throws InputError
+/// naming file and line for a wrong field count, a field that is not a finite number, or a
+/// zero normal. The normal is normalized.
+std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file);
+
+/// Writes `x,y,z,nx,ny,nz,E_r,E_g,E_b,bound` with a header; each number in the shortest form
+/// that reads back exactly. `bound` is the certified bound on each result's error.
+void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points, const std::vector<Rgb>& irradiance,
+                     const std::vector<double>& bound);
+
+}  // namespace rad

@@ -1,0 +1,19 @@
+#pragma once
+/// Module `geometry` (rad_geometry): the geometry kernel at the bottom of the graph, each
+/// operation written once:
+///  - vec.h: the vector types (Vec2, Vec3, Rgb);
+///  - clip.h: clipping a polygon to a half-space (Sutherland-Hodgman);
+///  - lambert.h: Lambert's contour formula and the unoccluded point-to-polygon form factor;
+///  - plane.h: facing tests (which side of a plane a point is on);
+///  - tolerance.h: the scene's tolerance policy, one value for the gatherers and the culling;
+///  - emitting_face.h: the faces the exact gatherers take;
+///  - exact_gatherer.h: the one interface of the two exact gatherers.
+///
+/// May use: Eigen only.
+#include "geometry/clip.h"
+#include "geometry/emitting_face.h"
+#include "geometry/exact_gatherer.h"
+#include "geometry/lambert.h"
+#include "geometry/plane.h"
+#include "geometry/tolerance.h"
+#include "geometry/vec.h"

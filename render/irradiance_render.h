@@ -1,0 +1,51 @@
+#pragma once
+/// Images of B(x) = E(x) + rho(x) H(x) at the primary hit of every pixel, with H from the
+/// error-bounded local pass (exact, with a certified bound) or from the Monte Carlo baseline,
+/// and what each pixel cost.
+#include <functional>
+#include <vector>
+
+#include "formats/image.h"
+#include "localpass/local_pass.h"
+#include "localpass/monte_carlo.h"
+#include "scene/camera.h"
+#include "scene/ray_caster.h"
+
+namespace rad {
+
+struct IrradianceImage {
+  Image radiosity;                    ///< B = E + rho H [W/m^2] at front-facing primary hits; 0 elsewhere
+  Image bound;                        ///< rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
+  std::vector<int> gathered_exactly;  ///< Per pixel: faces gathered exactly (0 at misses, back sides, Monte Carlo)
+  std::vector<int> projected;         ///< Per pixel: faces projected (hemisphere: with possible occluders)
+  std::vector<char> surface;          ///< Per pixel: 1 where a front-facing surface was gathered
+  int samples_per_pixel = 0;          ///< Monte Carlo: rays per pixel; 0 for the exact local pass
+};
+
+/// Per-pixel counts and bounds summed up over the pixels where a surface was gathered (the
+/// render's stats JSON, the sweep's table).
+struct IrradianceSummary {
+  size_t pixels = 0;  ///< pixels gathered
+  double gathered_exactly_mean = 0, projected_mean = 0;
+  int gathered_exactly_max = 0, projected_max = 0;
+  double bound_max = 0;  ///< largest bound, largest channel
+  /// bound / B per pixel (largest channels; 0 where B = 0): mean and max.
+  double relative_bound_mean = 0, relative_bound_max = 0;
+};
+IrradianceSummary summarize(const IrradianceImage& image);
+
+/// Renders through `camera` with the local pass at `tolerance`; parallel over 16x16 pixel tiles
+/// (TBB). Every pixel is computed on its own, so the image is bitwise the same for any thread
+/// count. `progress` (may be empty) is called with the number of pixels done, from worker
+/// threads, now and then.
+IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                                  const LocalPass& pass, double tolerance,
+                                  const std::function<void(size_t)>& progress = {});
+
+/// The Monte Carlo baseline: H from `samples` cosine-weighted rays per pixel, seeded by the
+/// pixel index (bitwise the same for any thread count).
+IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster, const Camera& camera,
+                                   const MonteCarloGatherer& gatherer, int samples,
+                                   const std::function<void(size_t)>& progress = {});
+
+}  // namespace rad

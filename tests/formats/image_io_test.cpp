@@ -1,0 +1,143 @@
+#include "formats/image_io.h"
+
+#include <gtest/gtest.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+
+#include <fstream>
+#include <random>
+
+#include "scene/error.h"
+#include "formats/atomic_file.h"
+
+namespace rad {
+namespace {
+
+std::filesystem::path temp_dir() {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("rad_viz_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                    "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);  // a fresh folder per test, whatever an earlier run left
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+Image random_image(int w, int h, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 100);
+  Image image(w, h);
+  for (Rgb& p : image.pixels) p = Rgb(u(rng), u(rng), u(rng));
+  return image;
+}
+
+TEST(ImageIo, ExrRoundTripKeepsFloatValues) {
+  const Image image = random_image(37, 23, 1);
+  const auto file = temp_dir() / "round.exr";
+  write_exr(file, image);
+  const Image back = read_exr(file);
+  ASSERT_EQ(back.width, 37);
+  ASSERT_EQ(back.height, 23);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(back.pixels[i][c], static_cast<double>(static_cast<float>(image.pixels[i][c]))) << i;
+    }
+  }
+}
+
+TEST(ImageIo, ReadingMissingOrBogusExrNamesTheFile) {
+  const auto dir = temp_dir();
+  EXPECT_THROW(read_exr(dir / "missing.exr"), InputError);
+  std::ofstream(dir / "bogus.exr") << "not an exr";
+  try {
+    read_exr(dir / "bogus.exr");
+    FAIL() << "bogus file accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bogus.exr"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ImageIo, SrgbEncodingMatchesTheStandard) {
+  EXPECT_EQ(to_srgb8(0.0, 0), 0);
+  EXPECT_EQ(to_srgb8(1.0, 0), 255);
+  EXPECT_EQ(to_srgb8(7.0, 0), 255);  // clamped
+  EXPECT_EQ(to_srgb8(-1.0, 0), 0);
+  EXPECT_EQ(to_srgb8(0.5, 0), 188);  // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354
+  EXPECT_EQ(to_srgb8(0.25, 1), 188);  // one stop up
+  EXPECT_EQ(to_srgb8(0.002, 0), 7);   // linear segment: 12.92 * 0.002 * 255 = 6.6
+}
+
+TEST(ImageIo, PngPreviewIsTopDownAndEncoded) {
+  Image image(4, 3);
+  image.at(0, 0) = Rgb(1, 0, 0);     // top-left red
+  image.at(3, 2) = Rgb(0, 0, 0.5);   // bottom-right mid blue
+  const auto file = temp_dir() / "preview.png";
+  write_png_preview(file, image);
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  vtkImageData* data = reader->GetOutput();
+  int dims[3];
+  data->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 4);
+  ASSERT_EQ(dims[1], 3);
+  ASSERT_EQ(data->GetNumberOfScalarComponents(), 3);
+  // VTK row 0 is the bottom: top-left is (0, 2).
+  auto* top_left = static_cast<unsigned char*>(data->GetScalarPointer(0, 2, 0));
+  EXPECT_EQ(top_left[0], 255);
+  EXPECT_EQ(top_left[1], 0);
+  auto* bottom_right = static_cast<unsigned char*>(data->GetScalarPointer(3, 0, 0));
+  EXPECT_EQ(bottom_right[2], 188);
+}
+
+TEST(AtomicFile, LeavesTargetUntouchedUntilCommit) {
+  const auto dir = temp_dir();
+  const auto target = dir / "result.exr";
+  std::ofstream(target) << "precious";
+  {
+    AtomicFile out(target);
+    std::ofstream(out.temp_path()) << "half-written";
+    EXPECT_TRUE(std::filesystem::exists(out.temp_path()));
+    // no commit: as if writing threw
+  }
+  std::ifstream in(target);
+  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(content, "precious");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "temp file left behind";
+  {
+    AtomicFile out(target);
+    std::ofstream(out.temp_path()) << "new";
+    out.commit();
+  }
+  std::ifstream again(target);
+  std::string updated((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(updated, "new");
+}
+
+TEST(AtomicFile, WriteTextFileReplacesOnlyOnSuccess) {
+  const auto dir = temp_dir();
+  const auto target = dir / "out.csv";
+  std::ofstream(target) << "precious";
+  EXPECT_THROW(write_text_file(target, [](std::ostream& out) {
+                 out << "half";
+                 throw Error("writer failed");
+               }),
+               Error);
+  const auto read = [&] {
+    std::ifstream in(target);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(read(), "precious");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "temp file left behind";
+  write_text_file(target, [](std::ostream& out) { out << "new\n"; });
+  EXPECT_EQ(read(), "new\n");
+}
+
+TEST(AtomicFile, CreatesMissingFolders) {
+  const auto target = temp_dir() / "a/b/c.exr";
+  write_exr(target, random_image(2, 2, 3));
+  EXPECT_TRUE(std::filesystem::exists(target));
+}
+
+}  // namespace
+}  // namespace rad
