@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,29 +12,18 @@
 #include "geometry/plane.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
+#include "radiosity/random_stream.h"
 #include "scene/error.h"
 
 namespace rad {
 namespace {
 
-/// SplitMix64: a counter-based generator, so every (shot, element, point, sample) has its own
-/// stream and the result does not depend on which thread computed it.
-uint64_t mix(uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-double uniform(uint64_t& state) {
-  state = mix(state);
-  return static_cast<double>(state >> 11) * 0x1.0p-53;
-}
-
 /// A point of a patch at parametric (u, v) in [0, 1]^2: bilinear on quads; on triangles the
 /// square is folded onto the triangle (area-preserving up to the fold).
 Vec3 patch_point(const Patch& p, double u, double v) {
   const auto& c = p.corners;
-  if (c.size() == 4) return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
+  if (c.size() == 4)
+    return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
   if (u + v > 1) u = 1 - u, v = 1 - v;
   return (1 - u - v) * c[0] + u * c[1] + v * c[2];
 }
@@ -54,7 +42,8 @@ class Shooter {
  public:
   Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
       : caster_(caster), epsilon_(epsilon) {
-    side_ = std::max(1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
+    side_ = std::max(
+        1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
     seed_ = settings.seed;
   }
 
@@ -66,11 +55,11 @@ class Shooter {
     if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return 0;
     const double ff = point_polygon_form_factor(x, n, shooter.corners);
     if (!(ff > 0)) return 0;
-    uint64_t state = mix(seed_ ^ mix(key));
+    uint64_t state = splitmix64(seed_ ^ splitmix64(key));
     int visible = 0;
     for (int a = 0; a < side_; ++a) {
       for (int b = 0; b < side_; ++b) {
-        const double u = (a + uniform(state)) / side_, v = (b + uniform(state)) / side_;
+        const double u = (a + next_uniform(state)) / side_, v = (b + next_uniform(state)) / side_;
         const Vec3 y = patch_point(shooter, u, v);
         const Vec3 d = y - x;
         const double distance = d.norm();
@@ -87,17 +76,12 @@ class Shooter {
     return ff * visible / (side_ * side_);
   }
 
-
  private:
   const RayCaster& caster_;
   double epsilon_;
   int side_ = 4;
   uint64_t seed_ = 1;
 };
-
-uint64_t key_of(int shot, int element, int point) {
-  return (static_cast<uint64_t>(shot) << 40) ^ (static_cast<uint64_t>(element) << 4) ^ static_cast<uint64_t>(point);
-}
 
 void validate(const SolverSettings& s) {
   auto bad = [](const std::string& what) { throw Error("solver settings: " + what); };
@@ -116,7 +100,8 @@ void validate(const SolverSettings& s) {
 double reference_radiosity(const Scene& scene) {
   const double area = scene.total_area();
   Rgb rho_area = Rgb::Zero();
-  for (const Polygon& p : scene.polygons) rho_area += scene.materials[p.material].reflectance * p.area;
+  for (const Polygon& p : scene.polygons)
+    rho_area += scene.materials[p.material].reflectance * p.area;
   const Rgb power = scene.emitted_power();
   double reference = 0;
   for (int c = 0; c < 3; ++c) {
@@ -202,7 +187,8 @@ class ProgressiveSolver {
         const auto opposite = h.opp().face();
         if (!opposite.is_valid()) continue;
         const int g = mesh.element(opposite.idx());
-        if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end()) neighbours.push_back(g);
+        if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end())
+          neighbours.push_back(g);
       }
       if (neighbours.size() < 3) return;
       // Fit B(u, v) = a + b u + c v through the neighbours, in the element's plane around its
@@ -263,7 +249,9 @@ class ProgressiveSolver {
   std::vector<Patch>& patches() { return solution_.patches; }
   std::vector<Element>& elements() { return solution_.elements; }
   SolveStats& stats() { return solution_.stats; }
-  const Material& material(int polygon) const { return scene_.materials[scene_.polygons[polygon].material]; }
+  const Material& material(int polygon) const {
+    return scene_.materials[scene_.polygons[polygon].material];
+  }
   // A re-gather can leave a patch's unshot radiosity slightly negative (its children hold a
   // little less than their parent did: the patch has over-shot). Negative unshot radiosity is
   // shot like positive, as a correction, so the remaining power is measured in absolute value.
@@ -284,7 +272,8 @@ class ProgressiveSolver {
     ++stats().refined;
   }
   double visible_ff(const Element& el, const Patch& source, uint64_t key) const {
-    return rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal, el.polygon, source, key);
+    return rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal, el.polygon,
+                                     source, key);
   }
 
   /// One shot of patch `shooter`'s unshot radiosity to every leaf.
@@ -322,7 +311,7 @@ class ProgressiveSolver {
   void receive(const std::vector<int>& which, const Patch& source, int shot) {
     tbb::parallel_for(size_t(0), which.size(), [&](size_t k) {
       const int e = which[k];
-      ff_[e] = visible_ff(elements()[e], source, key_of(shot, e, 0));
+      ff_[e] = visible_ff(elements()[e], source, stream_key(shot, e, StreamKind::centre, 0));
     });
   }
 
@@ -339,20 +328,23 @@ class ProgressiveSolver {
         const Element& el = elements()[e];
         const Rgb rho = material(el.polygon).reflectance;
         const double scale = rho.maxCoeff() * delta.cwiseAbs().maxCoeff();
-        const double lim = limit((el.radiosity + rho.cwiseProduct(delta) * ff_[e]).cwiseAbs().maxCoeff());
+        const double lim =
+            limit((el.radiosity + rho.cwiseProduct(delta) * ff_[e]).cwiseAbs().maxCoeff());
         if (scale <= lim || !splittable(el)) return;
         // Largest possible form factor from this element to the shooter (bounding spheres):
         // skip pairs that cannot reach the limit.
         const Sphere eb = bounding_sphere(el.corners, el.centroid);
         const double gap = (eb.centre - sb.centre).norm() - eb.radius - sb.radius;
-        const double ff_max = gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
+        const double ff_max =
+            gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
         if (scale * ff_max <= lim) return;
         // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
         double mean = 0;
         for (size_t c = 0; c < el.corners.size(); ++c) {
           const Vec3 x = el.corners[c] + 1e-3 * (el.centroid - el.corners[c]);
-          mean += rays_.visible_form_factor(x, solution_.patches[el.patch].normal, el.polygon, source,
-                                            key_of(shot, e, static_cast<int>(c) + 1));
+          mean += rays_.visible_form_factor(
+              x, solution_.patches[el.patch].normal, el.polygon, source,
+              stream_key(shot, e, StreamKind::corner, static_cast<int>(c)));
         }
         mean /= static_cast<double>(el.corners.size());
         split[k] = scale * std::abs(ff_[e] - mean) > lim;
@@ -384,7 +376,9 @@ class ProgressiveSolver {
       for (size_t j = 0; j < solution_.patches.size(); ++j) {
         const Patch& p = solution_.patches[j];
         if (p.shot == Rgb::Zero()) continue;
-        gathered[k] += p.shot * visible_ff(el, p, key_of(shot, children[k], 8 + static_cast<int>(j)));
+        gathered[k] += p.shot * visible_ff(el, p,
+                                           stream_key(shot, children[k], StreamKind::regather,
+                                                      static_cast<int>(j)));
       }
     });
     for (size_t k = 0; k < children.size(); ++k) {
@@ -432,7 +426,8 @@ Solution solve(const RayCaster& caster, const SolverSettings& settings,
     if (solver.refine_by_neighbours() == 0) break;
     solver.shoot_until_converged(progress);
   }
-  return solver.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return solver.finish(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace rad
