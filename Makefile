@@ -8,7 +8,7 @@ MAKEFLAGS += --no-print-directory
 DEMO_OUT ?= out/cornell-box
 RADIOSITY = $(BUILD_DIR)/cli/radiosity
 
-.PHONY: all deps configure build demo test bench results stability clean
+.PHONY: all deps configure build demo readme test bench results stability docs docs-check format format-check clean
 
 all: build
 
@@ -41,7 +41,15 @@ test: build
 bench: build
 	@bash bench/run_all.sh $(BUILD_DIR)
 
-# The README's Results section: the sweep on the Cornell box at 256x256 (the bench's uniform
+# The README's demo section: the real output of `make demo`, spliced in by scripts/readme_demo.py.
+readme: build
+	@mkdir -p out
+	@$(MAKE) demo 2>&1 | tee out/demo.log
+	@python3 scripts/readme_demo.py out/demo.log
+	@for image in local-pass patches facing; do cp $(DEMO_OUT)/$$image.png docs/images/cornell-box-$$image.png; done
+	@echo "readme: README.md and docs/images/cornell-box-*.png show this run of make demo"
+
+# docs/results.md: the sweep on the Cornell box at 256x256 (the bench's uniform
 # 2,948-element solution), its error maps and charts, the exports, and the figures it shows.
 RESULTS_OUT ?= out/results
 CORNELL = data/cornell-box/scene.json
@@ -59,12 +67,38 @@ results: build
 	  $(RESULTS_OUT)/sweep/error_vs_tolerance.png $(RESULTS_OUT)/sweep/time_vs_tolerance.png \
 	  $(RESULTS_OUT)/export/patch_mesh.png docs/images/results/
 	cp $(RESULTS_OUT)/error_map_hemisphere_T0.2.png $(RESULTS_OUT)/error_map_montecarlo_N1024.png docs/images/results/
+	@printf 'machine: %s cores, %s\ncommit: %s\ndate: %s\n' "$$(nproc)" \
+	  "$$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" \
+	  "$$(git rev-parse --short HEAD)$$(git diff --quiet HEAD -- . ':!docs' || echo ' (with uncommitted changes)')" \
+	  "$$(date -u +%Y-%m-%d)" > docs/images/results/run.txt
+	python3 scripts/results_md.py > docs/results.md
 
 # The stability report: the degenerate scene families through both exact gatherers and Monte
 # Carlo (bench/results/stability.md).
 stability: build
 	@bash bench/stability.sh $(BUILD_DIR)
 	@cat bench/results/stability.md
+
+# The manual's generated pages: the command reference from the executable's --help, and the
+# results page from the committed measurements. docs-check (CI) fails when either is stale.
+docs: build
+	@bash scripts/cli-reference.sh $(RADIOSITY) > docs/cli.md.tmp && mv docs/cli.md.tmp docs/cli.md
+	@python3 scripts/results_md.py > docs/results.md.tmp && mv docs/results.md.tmp docs/results.md
+	@echo "docs: wrote docs/cli.md, docs/results.md"
+
+docs-check: build
+	@bash scripts/cli-reference.sh $(RADIOSITY) | diff -u docs/cli.md - >/dev/null || \
+	  { echo "docs/cli.md is not the current --help text: run make docs" >&2; exit 1; }
+	@python3 scripts/results_md.py | diff -u docs/results.md - >/dev/null || \
+	  { echo "docs/results.md is not what the committed measurements give: run make docs" >&2; exit 1; }
+	@echo "docs-check: docs/cli.md and docs/results.md are current"
+
+# clang-format (.clang-format) over every tracked C++ file; format-check (CI) changes nothing.
+FORMATTED = git ls-files '*.h' '*.cpp'
+format: deps
+	@$(FORMATTED) | xargs clang-format -i
+format-check: deps
+	@$(FORMATTED) | xargs clang-format --dry-run --Werror && echo "format-check: clean"
 
 clean:
 	rm -rf $(BUILD_DIR) out

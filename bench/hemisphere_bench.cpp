@@ -13,13 +13,13 @@
 #include <random>
 #include <string>
 
-#include "radiosity/solution_faces.h"
 #include "hemisphere/hemisphere_gatherer.h"
-#include "scene/polygon_faces.h"
-#include "vertex/vertex_tracer.h"
 #include "radiosity/mesher.h"
+#include "radiosity/solution_faces.h"
 #include "scene/polygon.h"
+#include "scene/polygon_faces.h"
 #include "scene/scene_loader.h"
+#include "vertex/vertex_tracer.h"
 
 namespace {
 
@@ -86,37 +86,55 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 int main(int argc, char** argv) {
   const int count = argc > 1 ? std::stoi(argv[1]) : 400;
-  const rad::Scene cornell = rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
+  const rad::Scene cornell =
+      rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
   // Seeded points on the room's surfaces (floor, ceiling, walls), with their normals.
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(0.02, 0.98);
   std::vector<std::pair<rad::Vec3, rad::Vec3>> points;
   for (int i = 0; i < count; ++i) {
     switch (i % 4) {
-      case 0: points.push_back({{556 * u(rng), 0, 559.2 * u(rng)}, {0, 1, 0}}); break;           // floor
-      case 1: points.push_back({{549.6 * u(rng), 548.8 * u(rng), 559.2}, {0, 0, -1}}); break;  // back
-      case 2: points.push_back({{0, 548.8 * u(rng), 559.2 * u(rng)}, {1, 0, 0}}); break;       // right
-      default: points.push_back({{556 * u(rng), 548.8, 559.2 * u(rng)}, {0, -1, 0}}); break;   // ceiling
+      case 0:
+        points.push_back({{556 * u(rng), 0, 559.2 * u(rng)}, {0, 1, 0}});
+        break;  // floor
+      case 1:
+        points.push_back({{549.6 * u(rng), 548.8 * u(rng), 559.2}, {0, 0, -1}});
+        break;  // back
+      case 2:
+        points.push_back({{0, 548.8 * u(rng), 559.2 * u(rng)}, {1, 0, 0}});
+        break;  // right
+      default:
+        points.push_back({{556 * u(rng), 548.8, 559.2 * u(rng)}, {0, -1, 0}});
+        break;  // ceiling
     }
   }
-  std::printf("| patch size (of diagonal) | patches (all emitting) | method | points/s, 1 thread | points/s, 2 threads | ms per point, 1 thread |\n");
+  std::printf(
+      "| patch size (of diagonal) | patches (all emitting) | method | points/s, 1 thread | "
+      "points/s, 2 threads | ms per point, 1 thread |\n");
   std::printf("|---|---|---|---|---|---|\n");
   const auto rate = [&](const auto& gather, int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     const auto start = std::chrono::steady_clock::now();
-    tbb::parallel_for(size_t(0), points.size(), [&](size_t i) { gather(points[i].first, points[i].second); });
+    tbb::parallel_for(size_t(0), points.size(),
+                      [&](size_t i) { gather(points[i].first, points[i].second); });
     return points.size() / seconds_since(start);
   };
   for (const double size : {0.062, 0.034, 0.0185}) {
     const auto faces = patch_faces(cornell, size);
     const rad::HemisphereGatherer hemisphere(faces, cornell.tolerance());
     const rad::VertexTracer tracer(cornell, faces);
-    const auto by_hemisphere = [&](const rad::Vec3& x, const rad::Vec3& n) { return hemisphere.gather(x, n).irradiance; };
-    const auto by_vertex = [&](const rad::Vec3& x, const rad::Vec3& n) { return tracer.gather(x, n).irradiance; };
+    const auto by_hemisphere = [&](const rad::Vec3& x, const rad::Vec3& n) {
+      return hemisphere.gather(x, n).irradiance;
+    };
+    const auto by_vertex = [&](const rad::Vec3& x, const rad::Vec3& n) {
+      return tracer.gather(x, n).irradiance;
+    };
     const double h1 = rate(by_hemisphere, 1), h2 = rate(by_hemisphere, 2);
-    std::printf("| %.4f | %zu | hemisphere | %.0f | %.0f | %.2f |\n", size, faces.size(), h1, h2, 1000 / h1);
+    std::printf("| %.4f | %zu | hemisphere | %.0f | %.0f | %.2f |\n", size, faces.size(), h1, h2,
+                1000 / h1);
     const double v1 = rate(by_vertex, 1), v2 = rate(by_vertex, 2);
-    std::printf("| %.4f | %zu | vertex | %.0f | %.0f | %.2f |\n", size, faces.size(), v1, v2, 1000 / v1);
+    std::printf("| %.4f | %zu | vertex | %.0f | %.0f | %.2f |\n", size, faces.size(), v1, v2,
+                1000 / v1);
     std::fflush(stdout);
   }
 
@@ -127,17 +145,26 @@ int main(int argc, char** argv) {
   for (int i = 0; i < count / 4; ++i) points.push_back({{floor(rng), floor(rng), 0}, {0, 0, 1}});
   const rad::HemisphereGatherer hemisphere(rad::faces_from_polygons(stress), stress.tolerance());
   const rad::VertexTracer tracer(stress);
-  const double h1 = rate([&](const rad::Vec3& x, const rad::Vec3& n) { return hemisphere.gather(x, n).irradiance; }, 1);
-  const double v1 = rate([&](const rad::Vec3& x, const rad::Vec3& n) { return tracer.gather(x, n).irradiance; }, 1);
+  const double h1 = rate(
+      [&](const rad::Vec3& x, const rad::Vec3& n) { return hemisphere.gather(x, n).irradiance; },
+      1);
+  const double v1 = rate(
+      [&](const rad::Vec3& x, const rad::Vec3& n) { return tracer.gather(x, n).irradiance; }, 1);
   double worst = 0, lit = 0;
   for (const auto& [x, n] : points) {
     const double a = hemisphere.gather(x, n).irradiance.x(), b = tracer.gather(x, n).irradiance.x();
     worst = std::max(worst, std::abs(a - b) / std::max(a, 1e-300));
     lit += a / points.size();
   }
-  std::printf("\n| stress scene (001 Fig. 7b) | polygons | method | ms per point, 1 thread |\n|---|---|---|---|\n");
-  std::printf("| 1000 thin triangles, crescent source, %zu floor points | %zu | hemisphere | %.2f |\n", points.size(), stress.polygons.size(), 1000 / h1);
-  std::printf("| (mean irradiance %.3g; largest relative difference between the methods %.1e) | %zu | vertex | %.2f |\n",
-              lit, worst, stress.polygons.size(), 1000 / v1);
+  std::printf(
+      "\n| stress scene (001 Fig. 7b) | polygons | method | ms per point, 1 thread "
+      "|\n|---|---|---|---|\n");
+  std::printf(
+      "| 1000 thin triangles, crescent source, %zu floor points | %zu | hemisphere | %.2f |\n",
+      points.size(), stress.polygons.size(), 1000 / h1);
+  std::printf(
+      "| (mean irradiance %.3g; largest relative difference between the methods %.1e) | %zu | "
+      "vertex | %.2f |\n",
+      lit, worst, stress.polygons.size(), 1000 / v1);
   return 0;
 }

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "radiosity/solution_faces.h"
-#include "render/irradiance_render.h"
 #include "localpass/monte_carlo.h"
+#include "radiosity/solution_faces.h"
 #include "radiosity/solver.h"
+#include "render/irradiance_render.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 
@@ -25,7 +25,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 struct Errors {
   double max = 0, rms = 0, tightness_mean = 0, tightness_max = 0;
@@ -42,7 +44,8 @@ Errors compare(const rad::IrradianceImage& image, const rad::IrradianceImage& re
     if (!reference.surface[i]) continue;
     const double ref = reference.radiosity.pixels[i].maxCoeff();
     if (!(ref > 0)) continue;
-    const double error = (image.radiosity.pixels[i] - reference.radiosity.pixels[i]).cwiseAbs().maxCoeff();
+    const double error =
+        (image.radiosity.pixels[i] - reference.radiosity.pixels[i]).cwiseAbs().maxCoeff();
     const double relative = error / ref;
     e.max = std::max(e.max, relative);
     sum += relative * relative;
@@ -54,8 +57,9 @@ Errors compare(const rad::IrradianceImage& image, const rad::IrradianceImage& re
       e.tightness_max = std::max(e.tightness_max, t);
       ++bounded;
     }
-    if (((image.radiosity.pixels[i] - reference.radiosity.pixels[i]).cwiseAbs() - image.bound.pixels[i]).maxCoeff() >
-        1e-12 * (1 + ref)) {
+    if (((image.radiosity.pixels[i] - reference.radiosity.pixels[i]).cwiseAbs() -
+         image.bound.pixels[i])
+            .maxCoeff() > 1e-12 * (1 + ref)) {
       ++e.violations;
     }
   }
@@ -81,7 +85,8 @@ int main(int argc, char** argv) {
   const int size = argc > 1 ? std::stoi(argv[1]) : 128;
   const double patch_size = argc > 2 ? std::stod(argv[2]) : 0.07;
   const bool naive = argc > 3 ? std::stoi(argv[3]) != 0 : true;
-  const rad::Scene scene = rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
+  const rad::Scene scene =
+      rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
   rad::SolverSettings settings;
   settings.patch_size = patch_size;
   settings.refine_threshold = 0;  // a uniform mesh: the element count is the patch count x 4
@@ -94,10 +99,15 @@ int main(int argc, char** argv) {
   const rad::RayCaster caster(scene);
   const std::vector<double> tolerances{0.01, 0.05, 0.1, 0.2, 0.5};
 
-  std::printf("Cornell box, %d elements (patch size %.2f of the diagonal, no refinement), %dx%d pixels.\n\n",
-              static_cast<int>(faces.size()), patch_size, size, size);
-  std::printf("| method | tolerance | seconds | speed-up | elements gathered (mean) | projected (mean) | max rel. error "
-              "| RMS rel. error | error / bound (mean, max) | bound violations | Monte Carlo seconds for the same RMS |\n");
+  std::printf(
+      "Cornell box, %d elements (patch size %.2f of the diagonal, no refinement), %dx%d "
+      "pixels.\n\n",
+      static_cast<int>(faces.size()), patch_size, size, size);
+  std::printf(
+      "| method | tolerance | seconds | speed-up | elements gathered (mean) | projected (mean) | "
+      "max rel. error "
+      "| RMS rel. error | error / bound (mean, max) | bound violations | Monte Carlo seconds for "
+      "the same RMS |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
 
   // Monte Carlo series against the exact hemisphere image (filled in after the reference).
@@ -112,12 +122,14 @@ int main(int argc, char** argv) {
         // Interpolate log(seconds) against log(rms) between the two sample counts.
         const double t = std::log(rms / mc[k - 1].rms) / std::log(mc[k].rms / mc[k - 1].rms);
         char text[32];
-        std::snprintf(text, sizeof text, "%.2f", std::exp(std::log(mc[k - 1].seconds) +
-                                                            t * std::log(mc[k].seconds / mc[k - 1].seconds)));
+        std::snprintf(text, sizeof text, "%.2f",
+                      std::exp(std::log(mc[k - 1].seconds) +
+                               t * std::log(mc[k].seconds / mc[k - 1].seconds)));
         return text;
       }
     }
-    if (!mc.empty() && rms >= mc.front().rms) return "< " + std::to_string(mc.front().seconds).substr(0, 5);
+    if (!mc.empty() && rms >= mc.front().rms)
+      return "< " + std::to_string(mc.front().seconds).substr(0, 5);
     return mc.empty() ? "-" : "> " + std::to_string(mc.back().seconds).substr(0, 6);
   };
 
@@ -134,7 +146,8 @@ int main(int argc, char** argv) {
       const rad::MonteCarloGatherer gatherer(scene, faces);
       for (const int samples : {16, 64, 256, 1024, 4096, 16384}) {
         start = Clock::now();
-        const rad::IrradianceImage image = rad::render_monte_carlo(scene, caster, camera, gatherer, samples);
+        const rad::IrradianceImage image =
+            rad::render_monte_carlo(scene, caster, camera, gatherer, samples);
         const double s = seconds_since(start);
         const Errors e = compare(image, reference);
         mc.push_back({samples, s, e.rms, e.max});
@@ -142,36 +155,49 @@ int main(int argc, char** argv) {
       }
     } else {
       const Errors e = compare(reference, hemisphere_reference);
-      std::fprintf(stderr, "vertex vs hemisphere at tolerance 0: max relative difference %.2e\n", e.max);
+      std::fprintf(stderr, "vertex vs hemisphere at tolerance 0: max relative difference %.2e\n",
+                   e.max);
     }
-    std::printf("| %s | 0 | %.1f | 1.00 | %.1f%% | %.1f%% | 0 | 0 | - | 0 | - |\n", name.c_str(), reference_seconds,
-                100 * mean_fraction(reference.gathered_exactly, reference.surface, pass.face_count()),
-                100 * mean_fraction(reference.projected, reference.surface, pass.face_count()));
+    std::printf(
+        "| %s | 0 | %.1f | 1.00 | %.1f%% | %.1f%% | 0 | 0 | - | 0 | - |\n", name.c_str(),
+        reference_seconds,
+        100 * mean_fraction(reference.gathered_exactly, reference.surface, pass.face_count()),
+        100 * mean_fraction(reference.projected, reference.surface, pass.face_count()));
     if (naive) {
       rad::LocalPassSettings no_culling;
       no_culling.occlusion_culling = false;
       const rad::LocalPass naive_pass(scene, faces, method, no_culling);
       start = Clock::now();
-      const rad::IrradianceImage image = rad::render_local_pass(scene, caster, camera, naive_pass, 0);
+      const rad::IrradianceImage image =
+          rad::render_local_pass(scene, caster, camera, naive_pass, 0);
       const double s = seconds_since(start);
       const Errors e = compare(image, reference);
-      std::printf("| %s, no culling | 0 | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | - | %d | - |\n", name.c_str(), s,
-                  reference_seconds / s, 100 * mean_fraction(image.gathered_exactly, image.surface, pass.face_count()),
-                  100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms, e.violations);
+      std::printf(
+          "| %s, no culling | 0 | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | - | %d | - |\n",
+          name.c_str(), s, reference_seconds / s,
+          100 * mean_fraction(image.gathered_exactly, image.surface, pass.face_count()),
+          100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms,
+          e.violations);
     }
     for (const double tolerance : tolerances) {
       start = Clock::now();
-      const rad::IrradianceImage image = rad::render_local_pass(scene, caster, camera, pass, tolerance);
+      const rad::IrradianceImage image =
+          rad::render_local_pass(scene, caster, camera, pass, tolerance);
       const double s = seconds_since(start);
       const Errors e = compare(image, reference);
-      std::printf("| %s | %.2f | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | %.3f, %.3f | %d | %s |\n", name.c_str(), tolerance, s,
-                  reference_seconds / s, 100 * mean_fraction(image.gathered_exactly, image.surface, pass.face_count()),
-                  100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms, e.tightness_mean,
-                  e.tightness_max, e.violations, mc_seconds_for(e.rms).c_str());
+      std::printf(
+          "| %s | %.2f | %.1f | %.2f | %.1f%% | %.1f%% | %.2e | %.2e | %.3f, %.3f | %d | %s |\n",
+          name.c_str(), tolerance, s, reference_seconds / s,
+          100 * mean_fraction(image.gathered_exactly, image.surface, pass.face_count()),
+          100 * mean_fraction(image.projected, image.surface, pass.face_count()), e.max, e.rms,
+          e.tightness_mean, e.tightness_max, e.violations, mc_seconds_for(e.rms).c_str());
       std::fflush(stdout);
     }
   }
-  std::printf("\n| Monte Carlo samples per pixel | seconds | RMS rel. error vs exact | max rel. error vs exact |\n|---|---|---|---|\n");
-  for (const McPoint& p : mc) std::printf("| %d | %.2f | %.2e | %.2e |\n", p.samples, p.seconds, p.rms, p.max);
+  std::printf(
+      "\n| Monte Carlo samples per pixel | seconds | RMS rel. error vs exact | max rel. error vs "
+      "exact |\n|---|---|---|---|\n");
+  for (const McPoint& p : mc)
+    std::printf("| %d | %.2f | %.2e | %.2e |\n", p.samples, p.seconds, p.rms, p.max);
   return 0;
 }

@@ -12,7 +12,8 @@
 namespace {
 
 const rad::Scene& cornell() {
-  static const rad::Scene scene = rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
+  static const rad::Scene scene =
+      rad::load_scene(std::string(RAD_SOURCE_DIR) + "/data/cornell-box/scene.json");
   return scene;
 }
 

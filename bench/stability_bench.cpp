@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "scene/polygon_faces.h"
 #include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/monte_carlo.h"
-#include "vertex/vertex_tracer.h"
+#include "scene/polygon_faces.h"
 #include "tests/random_scenes.h"
+#include "vertex/vertex_tracer.h"
 
 namespace {
 
@@ -40,10 +40,13 @@ struct Family {
 
 /// A floor at z = 0 (split along its diagonal into two triangles), lamps above, and what
 /// `add` builds; sites are added by `add` too.
-RandomScene with_floor(RandomSceneMaker& m, const std::function<void(SceneBuilder&, int grey, int lamp, RandomScene&)>& add) {
+RandomScene with_floor(
+    RandomSceneMaker& m,
+    const std::function<void(SceneBuilder&, int grey, int lamp, RandomScene&)>& add) {
   SceneBuilder b;
   const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
-  const int lamp = b.material("lamp", Rgb::Zero(), Rgb(m.uniform(0.5, 2), m.uniform(0.5, 2), m.uniform(0.5, 2)));
+  const int lamp =
+      b.material("lamp", Rgb::Zero(), Rgb(m.uniform(0.5, 2), m.uniform(0.5, 2), m.uniform(0.5, 2)));
   b.polygon({Vec3(-2, -2, 0), Vec3(2, -2, 0), Vec3(2, 2, 0)}, grey);
   b.polygon({Vec3(-2, -2, 0), Vec3(2, 2, 0), Vec3(-2, 2, 0)}, grey);
   RandomScene out;
@@ -62,7 +65,8 @@ void lamp_above(SceneBuilder& b, int lamp, double cx, double cy, double h, doubl
 std::function<RandomScene(RandomSceneMaker&)> on_edges(int which) {
   return [which](RandomSceneMaker& m) {
     return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
-      lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2), m.uniform(0.2, 0.6));
+      lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2),
+                 m.uniform(0.2, 0.6));
       // A wall standing on the floor along y = w, facing -y, from x = a to e.
       const double w = m.uniform(-0.5, 0.5), a = m.uniform(-1.5, -0.5), e = m.uniform(0.5, 1.5);
       b.polygon({Vec3(a, w, 0), Vec3(e, w, 0), Vec3(e, w, 1), Vec3(a, w, 1)}, grey);
@@ -75,25 +79,33 @@ std::function<RandomScene(RandomSceneMaker&)> on_edges(int which) {
 
 std::vector<Family> families() {
   using C = RandomSceneMaker::Conjunction;
-  const auto conjunction = [](C kind) { return [kind](RandomSceneMaker& m) { return m.conjunctive_scene(kind); }; };
+  const auto conjunction = [](C kind) {
+    return [kind](RandomSceneMaker& m) { return m.conjunctive_scene(kind); };
+  };
   return {
       {"random", "concave and interpenetrating polygons at random", 200,
        [](RandomSceneMaker& m) { return m.random_scene(); }},
-      {"three_edges", "three edges at different depths through one apparent point", 60, conjunction(C::three_edges)},
+      {"three_edges", "three edges at different depths through one apparent point", 60,
+       conjunction(C::three_edges)},
       {"vertex_behind", "vertices exactly behind one another", 60, conjunction(C::vertex_behind)},
-      {"collinear_edges", "edges on one 3D line; edges in one plane through x", 60, conjunction(C::collinear_edges)},
-      {"coplanar", "coplanar polygons, overlapping and touching (T-junctions)", 60, conjunction(C::coplanar)},
-      {"vertex_on_edge", "a vertex on another polygon's edge, in 3D and in projection", 60, conjunction(C::vertex_on_edge)},
+      {"collinear_edges", "edges on one 3D line; edges in one plane through x", 60,
+       conjunction(C::collinear_edges)},
+      {"coplanar", "coplanar polygons, overlapping and touching (T-junctions)", 60,
+       conjunction(C::coplanar)},
+      {"vertex_on_edge", "a vertex on another polygon's edge, in 3D and in projection", 60,
+       conjunction(C::vertex_on_edge)},
       {"straddling", "polygons crossing the tangent plane at x", 60,
        [](RandomSceneMaker& m) {
          return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
-           lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2), m.uniform(0.2, 0.6));
+           lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2),
+                      m.uniform(0.2, 0.6));
            for (int i = 0; i < 4; ++i) {
              // Centred within 0.3 of the floor, tilted: they cut the plane z = 0 near the sites.
              const Vec3 c(m.uniform(-0.8, 0.8), m.uniform(-0.8, 0.8), m.uniform(-0.3, 0.3));
              b.polygon(m.polygon(c, m.unit(), m.uniform(0.3, 0.8)), i == 0 ? lamp : grey);
            }
-           for (int i = 0; i < 3; ++i) out.sites.push_back({Vec3(m.uniform(-1, 1), m.uniform(-1, 1), 0), Vec3::UnitZ()});
+           for (int i = 0; i < 3; ++i)
+             out.sites.push_back({Vec3(m.uniform(-1, 1), m.uniform(-1, 1), 0), Vec3::UnitZ()});
          });
        }},
       {"edge_on", "emitters seen exactly edge-on: their plane holds x", 60,
@@ -126,9 +138,11 @@ std::vector<Family> families() {
          // A huge ceiling lamp far away, a tiny lamp and tiny occluders close to the site.
          b.rectangle(-1e4, 1e4, -1e4, 1e4, m.uniform(1e3, 5e3), true, lamp);
          const Vec3 x(m.uniform(-1e-3, 1e-3), m.uniform(-1e-3, 1e-3), 0);
-         b.rectangle(x.x() - 1e-4, x.x() + 1e-4, x.y() - 1e-4, x.y() + 1e-4, m.uniform(1e-4, 1e-3), true, lamp);
+         b.rectangle(x.x() - 1e-4, x.x() + 1e-4, x.y() - 1e-4, x.y() + 1e-4, m.uniform(1e-4, 1e-3),
+                     true, lamp);
          for (int i = 0; i < 3; ++i) {
-           const Vec3 c = x + Vec3(m.uniform(-1e-3, 1e-3), m.uniform(-1e-3, 1e-3), m.uniform(2e-4, 2e-3));
+           const Vec3 c =
+               x + Vec3(m.uniform(-1e-3, 1e-3), m.uniform(-1e-3, 1e-3), m.uniform(2e-4, 2e-3));
            b.polygon(m.polygon(c, m.unit(), m.uniform(1e-4, 5e-4)), grey);
          }
          RandomScene out{b.scene(), {{x, Vec3::UnitZ()}, {x + Vec3(3e-4, 0, 0), Vec3::UnitZ()}}};
@@ -144,7 +158,8 @@ std::vector<Family> families() {
              const double length = m.uniform(0.2, 0.5), width = m.uniform(0.005, 0.02);
              b.polygon({c - length * along, c + length * along, c + width * across}, grey);
            }
-           for (int i = 0; i < 3; ++i) out.sites.push_back({Vec3(m.uniform(-1, 1), m.uniform(-1, 1), 0), Vec3::UnitZ()});
+           for (int i = 0; i < 3; ++i)
+             out.sites.push_back({Vec3(m.uniform(-1, 1), m.uniform(-1, 1), 0), Vec3::UnitZ()});
          });
        }},
   };
@@ -159,15 +174,20 @@ double relative_difference(const Rgb& a, const Rgb& b) {
   return scale > 0 ? d / scale : d;
 }
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 }  // namespace
 
 int main() {
-  std::printf("| family | stresses | points | hemisphere vs vertex: largest rel. difference | points over 1e-9 "
-              "| Monte Carlo (%d rays) vs hemisphere: max / RMS rel. error | NaN (hemisphere / vertex / MC) "
-              "| seconds (hemisphere / vertex / MC) |\n|---|---|---|---|---|---|---|---|\n",
-              kMonteCarloSamples);
+  std::printf(
+      "| family | stresses | points | hemisphere vs vertex: largest rel. difference | points over "
+      "1e-9 "
+      "| Monte Carlo (%d rays) vs hemisphere: max / RMS rel. error | NaN (hemisphere / vertex / "
+      "MC) "
+      "| seconds (hemisphere / vertex / MC) |\n|---|---|---|---|---|---|---|---|\n",
+      kMonteCarloSamples);
   const auto all = families();
   for (size_t f = 0; f < all.size(); ++f) {
     const Family& family = all[f];
@@ -176,7 +196,8 @@ int main() {
     for (int s = 1; s <= family.scenes; ++s) {
       RandomSceneMaker maker(100000 * (f + 1) + s);
       const RandomScene r = family.make(maker);
-      const rad::HemisphereGatherer hemisphere(rad::faces_from_polygons(r.scene), r.scene.tolerance());
+      const rad::HemisphereGatherer hemisphere(rad::faces_from_polygons(r.scene),
+                                               r.scene.tolerance());
       const rad::VertexTracer tracer(r.scene);
       const rad::MonteCarloGatherer monte_carlo(r.scene, rad::faces_from_polygons(r.scene));
       for (size_t i = 0; i < r.sites.size(); ++i) {
@@ -205,9 +226,10 @@ int main() {
         }
       }
     }
-    std::printf("| %s | %s | %d | %.2e | %d | %.2e / %.2e | %d / %d / %d | %.3f / %.3f / %.3f |\n", family.name,
-                family.stresses, points, largest, over, mc_max, std::sqrt(mc_squares / std::max(mc_points, 1)), nan_h,
-                nan_v, nan_mc, t_h, t_v, t_mc);
+    std::printf("| %s | %s | %d | %.2e | %d | %.2e / %.2e | %d / %d / %d | %.3f / %.3f / %.3f |\n",
+                family.name, family.stresses, points, largest, over, mc_max,
+                std::sqrt(mc_squares / std::max(mc_points, 1)), nan_h, nan_v, nan_mc, t_h, t_v,
+                t_mc);
     std::fflush(stdout);
   }
   return 0;

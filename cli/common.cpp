@@ -6,9 +6,9 @@
 #include <chrono>
 #include <iostream>
 
+#include "formats/solution_io.h"
 #include "scene/error.h"
 #include "scene/scene_loader.h"
-#include "formats/solution_io.h"
 
 namespace rad::cli {
 
@@ -18,18 +18,20 @@ Scene load_scene_reporting(const std::string& path) {
   return scene;
 }
 
-Solution load_solution_for(const Scene& scene, const std::string& scene_path, const std::string& solution_path) {
+Solution load_solution_for(const Scene& scene, const std::string& scene_path,
+                           const std::string& solution_path) {
   Solution solution = read_solution(solution_path);
   if (solution.scene_fingerprint != scene.fingerprint()) {
-    throw InputError(solution_path + ": solved for a different scene (" + solution.scene_path + "); solve " +
-                     scene_path + " again");
+    throw InputError(solution_path + ": solved for a different scene (" + solution.scene_path +
+                     "); solve " + scene_path + " again");
   }
   return solution;
 }
 
-CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const std::string& command, int width,
-                      int height) {
-  if (!scene.camera) throw InputError(scene_path + ": no \"camera\" block; " + command + " needs one");
+CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const std::string& command,
+                      int width, int height) {
+  if (!scene.camera)
+    throw InputError(scene_path + ": no \"camera\" block; " + command + " needs one");
   CameraSpec spec = *scene.camera;
   if (width > 0) spec.width = width;
   if (height > 0) spec.height = height;
@@ -38,7 +40,8 @@ CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const s
 
 ThreadLimit::ThreadLimit(int threads) {
   if (threads > 0) {
-    control_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+    control_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                     threads);
   }
 }
 
@@ -48,7 +51,8 @@ double now_seconds() {
 }
 }  // namespace
 
-ProgressBar::ProgressBar(std::string label) : label_(std::move(label)), enabled_(::isatty(STDERR_FILENO)) {}
+ProgressBar::ProgressBar(std::string label)
+    : label_(std::move(label)), enabled_(::isatty(STDERR_FILENO)) {}
 
 ProgressBar::~ProgressBar() { finish(); }
 
@@ -60,8 +64,8 @@ void ProgressBar::update(double done, const std::string& detail) {
   last_ = t;
   constexpr int kWidth = 30;
   const int filled = static_cast<int>(std::clamp(done, 0.0, 1.0) * kWidth);
-  std::cerr << "\r" << label_ << " [" << std::string(filled, '#') << std::string(kWidth - filled, ' ') << "] "
-            << detail << "\x1b[K" << std::flush;
+  std::cerr << "\r" << label_ << " [" << std::string(filled, '#')
+            << std::string(kWidth - filled, ' ') << "] " << detail << "\x1b[K" << std::flush;
   drawn_ = true;
 }
 
@@ -72,26 +76,33 @@ void ProgressBar::finish() {
 }
 
 void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help) {
-  sub->add_option("-t,--tolerance", *tolerance, help)->check(CLI::Range(0.0, 0.99))->capture_default_str();
+  sub->add_option("-t,--tolerance", *tolerance, help)
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
 }
 
 void add_samples_option(CLI::App* sub, int* samples, const std::string& unit) {
-  sub->add_option("--samples", *samples, "montecarlo: rays per " + unit + " (rounded up to a square)")
+  sub->add_option("--samples", *samples,
+                  "montecarlo: rays per " + unit + " (rounded up to a square)")
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
 }
 
 CLI::Option* add_solution_option(CLI::App* sub, std::string* solution, const std::string& detail) {
-  return sub->add_option("-s,--solution", *solution, "Solution file (.vtp) from `radiosity solve`" + detail);
+  return sub->add_option("-s,--solution", *solution,
+                         "Solution file (.vtp) from `radiosity solve`" + detail);
 }
 
 void add_image_size_options(CLI::App* sub, int* width, int* height, const std::string& what) {
-  sub->add_option("--width", *width, what + " width in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
-  sub->add_option("--height", *height, what + " height in pixels (default: the camera's)")->check(CLI::Range(1, 1 << 15));
+  sub->add_option("--width", *width, what + " width in pixels (default: the camera's)")
+      ->check(CLI::Range(1, 1 << 15));
+  sub->add_option("--height", *height, what + " height in pixels (default: the camera's)")
+      ->check(CLI::Range(1, 1 << 15));
 }
 
 void add_threads_option(CLI::App* sub, int* threads) {
-  sub->add_option("-j,--threads", *threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sub->add_option("-j,--threads", *threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
 }
 
 }  // namespace rad::cli

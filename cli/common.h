@@ -1,8 +1,8 @@
 #pragma once
 /// Helpers shared by the subcommands.
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -19,10 +19,12 @@ void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& h
 void add_samples_option(CLI::App* sub, int* samples, const std::string& unit);
 
 /// -s,--solution (a .vtp from `radiosity solve`); `detail` is appended to the help text.
-CLI::Option* add_solution_option(CLI::App* sub, std::string* solution, const std::string& detail = "");
+CLI::Option* add_solution_option(CLI::App* sub, std::string* solution,
+                                 const std::string& detail = "");
 /// --width and --height overriding the camera's image size (0: the camera's); `what` names the
 /// image in the help text.
-void add_image_size_options(CLI::App* sub, int* width, int* height, const std::string& what = "Image");
+void add_image_size_options(CLI::App* sub, int* width, int* height,
+                            const std::string& what = "Image");
 /// -j,--threads (0: all cores).
 void add_threads_option(CLI::App* sub, int* threads);
 
@@ -31,12 +33,13 @@ Scene load_scene_reporting(const std::string& path);
 
 /// Reads a solution file and checks that it was solved for `scene` (loaded from
 /// `scene_path`). Throws InputError naming the file otherwise.
-Solution load_solution_for(const Scene& scene, const std::string& scene_path, const std::string& solution_path);
+Solution load_solution_for(const Scene& scene, const std::string& scene_path,
+                           const std::string& solution_path);
 
 /// The scene's camera with the image size overridden where `width`/`height` are positive.
 /// Throws InputError when the scene has no camera block.
-CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const std::string& command, int width,
-                      int height);
+CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const std::string& command,
+                      int width, int height);
 
 /// Limits TBB to `threads` workers while alive (0: all cores).
 class ThreadLimit {

@@ -5,18 +5,18 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
-#include "radiosity/solution_faces.h"
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "scene/polygon_faces.h"
-#include "localpass/local_pass.h"
-#include "octree/octree.h"
-#include "scene/error.h"
 #include "formats/image_io.h"
 #include "formats/solution_io.h"
+#include "localpass/local_pass.h"
+#include "octree/octree.h"
+#include "radiosity/solution_faces.h"
+#include "scene/error.h"
+#include "scene/polygon_faces.h"
 #include "viz/vtk_export.h"
 
 namespace rad::cli {
@@ -55,7 +55,9 @@ void run_export(const ExportOptions& o) {
   ChannelImage pixels;
   if (!o.stats.empty()) pixels = read_exr_channels(pixels_file_of(o.stats));
   std::optional<CameraSpec> camera;
-  if (!o.no_png) camera = camera_for(scene, o.scene, "export (for patch_mesh.png; or --no-png)", o.width, o.height);
+  if (!o.no_png)
+    camera =
+        camera_for(scene, o.scene, "export (for patch_mesh.png; or --no-png)", o.width, o.height);
 
   write_solution(folder / "patch_mesh.vtp", solution, scene);
   written.push_back("patch_mesh.vtp");
@@ -81,20 +83,37 @@ void run_export(const ExportOptions& o) {
 
 void add_export_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<ExportOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "export",
-      "VTK XML files for ParaView: the patch mesh (patch_mesh.vtp: radiosity, emission, reflectance, refinement "
-      "level), the octree (octree.vtu: hexahedra with bmax, patch_count, energy), with --stats a render's "
-      "per-pixel statistics (pixel_stats.vti); and patch_mesh.png, the mesh coloured by radiosity from the scene "
-      "camera.");
+  CLI::App* sub = app.add_subcommand("export",
+                                     "VTK XML files for ParaView: the patch mesh (patch_mesh.vtp: "
+                                     "radiosity, emission, reflectance, refinement "
+                                     "level), the octree (octree.vtu: hexahedra with bmax, "
+                                     "patch_count, energy), with --stats a render's "
+                                     "per-pixel statistics (pixel_stats.vti); and patch_mesh.png, "
+                                     "the mesh coloured by radiosity from the scene "
+                                     "camera.");
+  sub->footer(
+      "Writes to the folder: patch_mesh.vtp (the leaf elements with cell data radiosity, "
+      "emission,\n"
+      "reflectance, level, parent_polygon, patch, area: the solution file's format), octree.vtu "
+      "(every\n"
+      "non-empty voxel of the local pass's octree as a hexahedron with cell data bmax (004 eq. "
+      "5),\n"
+      "bmax_max, patch_count, energy, level, leaf: threshold leaf = 1 to see the leaves), with "
+      "--stats\n"
+      "pixel_stats.vti (a render's per-pixel statistics as an image, right side up), and\n"
+      "patch_mesh.png (the elements flat-coloured by radiosity with their edges, from the scene\n"
+      "camera; needs an X display, a private Xvfb is started without $DISPLAY; --no-png skips "
+      "it).");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
-  sub->add_option("--stats", o->stats,
-                  "Stats JSON written by `radiosity render` (IMAGE.stats.json): export its per-pixel faces "
-                  "projected and bound as pixel_stats.vti");
+  sub->add_option(
+      "--stats", o->stats,
+      "Stats JSON written by `radiosity render` (IMAGE.stats.json): export its per-pixel faces "
+      "projected and bound as pixel_stats.vti");
   add_image_size_options(sub, &o->width, &o->height, "patch_mesh.png");
-  sub->add_option("--exposure", o->exposure, "patch_mesh.png exposure in stops (linear * 2^exposure)")
+  sub->add_option("--exposure", o->exposure,
+                  "patch_mesh.png exposure in stops (linear * 2^exposure)")
       ->capture_default_str();
   sub->add_flag("--no-png", o->no_png, "Do not draw patch_mesh.png (no X display or Xvfb needed)");
   sub->callback([o, &run] { run = [o] { run_export(*o); }; });

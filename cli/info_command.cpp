@@ -87,14 +87,14 @@ void run_info(const InfoOptions& options) {
   std::cout << "materials      " << scene.materials.size() << "\n";
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mat = scene.materials[m];
-    std::cout << "  " << std::left << std::setw(12) << mat.name << std::right
-              << " reflectance " << triple(mat.reflectance) << "  emission "
-              << triple(mat.emission) << "  " << polygons_per_material[m]
+    std::cout << "  " << std::left << std::setw(12) << mat.name << std::right << " reflectance "
+              << triple(mat.reflectance) << "  emission " << triple(mat.emission) << "  "
+              << polygons_per_material[m]
               << (polygons_per_material[m] == 1 ? " polygon" : " polygons") << ", area "
               << area_per_material[m] << "\n";
   }
-  std::cout << "warnings       " << scene.warnings.size() << (scene.warnings.empty() ? "" : " (on stderr)")
-            << "\n";
+  std::cout << "warnings       " << scene.warnings.size()
+            << (scene.warnings.empty() ? "" : " (on stderr)") << "\n";
 }
 
 }  // namespace
@@ -103,6 +103,12 @@ void add_info_command(CLI::App& app, Run& run) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand(
       "info", "Load and validate a scene; print counts, bounds, materials, emitters, warnings.");
+  sub->footer(
+      "Prints objects, polygons, vertices, total area, bounding box, emitters and emitted power\n"
+      "(exitance x area: W when lengths are metres), the camera, and the materials with the "
+      "polygon\n"
+      "count and area of each. Warnings (what loading fixed: repeated vertices merged, slightly\n"
+      "non-planar polygons split into triangles) go to stderr. --json prints the same as JSON.");
   sub->add_option("scene", options->scene, "Scene file (JSON)")->required();
   sub->add_flag("--json", options->json, "Print the summary as JSON");
   sub->callback([options, &run] { run = [options] { run_info(*options); }; });

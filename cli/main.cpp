@@ -12,7 +12,8 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "radiosity: progressive radiosity with an exact, error-bounded local pass.\n"
-      "Results go to files or stdout; progress and messages to stderr."};
+      "Results go to files or stdout; progress and messages to stderr.",
+      "radiosity"};  // named, so that --help reads the same however it was invoked
   app.require_subcommand(1);
   app.set_version_flag("--version", "radiosity 0.1.0");
 

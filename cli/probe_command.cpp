@@ -1,27 +1,28 @@
-// `radiosity probe SCENE --points P.csv [--solution S.vtp [--tolerance T]] [--method hemisphere|vertex]
+// `radiosity probe SCENE --points P.csv [--solution S.vtp [--tolerance T]] [--method
+// hemisphere|vertex]
 // [-o OUT.csv]`: exact irradiance at given points: direct lighting only (polygons radiate their
 // emission, all occlude), or from a solution through the error-bounded local pass.
 #include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <chrono>
-#include <iostream>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <optional>
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "formats/atomic_file.h"
+#include "formats/points_csv.h"
+#include "formats/solution_io.h"
 #include "localpass/local_pass.h"
 #include "localpass/method.h"
 #include "localpass/monte_carlo.h"
 #include "radiosity/solution_faces.h"
-#include "scene/polygon_faces.h"
 #include "scene/error.h"
-#include "formats/atomic_file.h"
-#include "formats/points_csv.h"
-#include "formats/solution_io.h"
+#include "scene/polygon_faces.h"
 
 namespace rad::cli {
 namespace {
@@ -82,43 +83,65 @@ void run_probe(const ProbeOptions& o) {
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
     gather(i);
     const size_t finished = ++done;
-    if (finished % 256 == 0) bar.update(static_cast<double>(finished) / points.size(), std::to_string(finished) + " points");
+    if (finished % 256 == 0)
+      bar.update(static_cast<double>(finished) / points.size(),
+                 std::to_string(finished) + " points");
   });
   bar.finish();
 
   if (o.output.empty()) {
     write_probe_csv(std::cout, points, irradiance, bound);
   } else {
-    write_text_file(o.output, [&](std::ostream& file) { write_probe_csv(file, points, irradiance, bound); });
+    write_text_file(o.output,
+                    [&](std::ostream& file) { write_probe_csv(file, points, irradiance, bound); });
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::string what = o.solution.empty() ? "direct only" : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);
-  std::cerr << "probe: " << points.size() << " points, " << o.method << ", " << what << ", " << seconds << " s"
-            << (o.output.empty() ? "" : "; wrote " + o.output) << "\n";
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string what =
+      o.solution.empty() ? "direct only"
+                         : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);
+  std::cerr << "probe: " << points.size() << " points, " << o.method << ", " << what << ", "
+            << seconds << " s" << (o.output.empty() ? "" : "; wrote " + o.output) << "\n";
 }
 
 }  // namespace
 
 void add_probe_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<ProbeOptions>();
-  CLI::App* sub = app.add_subcommand("probe",
-                                     "Exact irradiance at points (CSV in, CSV out). Without --solution, direct only: "
-                                     "polygons radiate their emission, every polygon occludes from both sides. With "
-                                     "--solution, every element radiates its radiosity (the local pass).");
+  CLI::App* sub = app.add_subcommand(
+      "probe",
+      "Exact irradiance at points (CSV in, CSV out). Without --solution, direct only: "
+      "polygons radiate their emission, every polygon occludes from both sides. With "
+      "--solution, every element radiates its radiosity (the local pass).");
+  sub->footer(
+      "Reads rows x,y,z,nx,ny,nz (a header row, blank lines and # comments allowed; the normal is\n"
+      "normalized); writes x,y,z,nx,ny,nz,E_r,E_g,E_b,bound: irradiance in W/m^2 and the certified "
+      "bound\n"
+      "on its error (largest channel: 0 when exact, inf for Monte Carlo), each number in the "
+      "shortest\n"
+      "form that reads back exactly. A point on a polygon, an edge or a vertex is valid. Parallel "
+      "over\n"
+      "points; the output is byte-identical for any thread count.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
-  sub->add_option("-p,--points", o->points, "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")->required();
-  sub->add_option("-m,--method", o->method,
-                  "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing with "
-                  "angular spans (paper 001). Both exact; they agree to 1e-9. montecarlo (with --solution): "
-                  "--samples cosine-weighted rays per point, bound reported as inf")
+  sub->add_option("-p,--points", o->points,
+                  "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")
+      ->required();
+  sub->add_option(
+         "-m,--method", o->method,
+         "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing "
+         "with "
+         "angular spans (paper 001). Both exact; they agree to 1e-9. montecarlo (with --solution): "
+         "--samples cosine-weighted rays per point, bound reported as inf")
       ->check(CLI::IsMember(method_names()))
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");
-  add_tolerance_option(sub, &o->tolerance,
-                       "With --solution: stop once the certified error bound is at most this fraction of the "
-                       "value (0: exact); the bound column reports it");
+  add_tolerance_option(
+      sub, &o->tolerance,
+      "With --solution: stop once the certified error bound is at most this fraction of the "
+      "value (0: exact); the bound column reports it");
   add_samples_option(sub, &o->samples, "point");
-  sub->add_option("-o,--output", o->output, "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
+  sub->add_option("-o,--output", o->output,
+                  "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_probe(*o); }; });
 }

@@ -7,21 +7,21 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
-#include "radiosity/solution_faces.h"
 #include "cli/commands.h"
 #include "cli/common.h"
-#include "render/albedo_render.h"
-#include "localpass/method.h"
-#include "render/irradiance_render.h"
-#include "render/patch_render.h"
 #include "formats/atomic_file.h"
-#include "scene/error.h"
-#include "scene/ray_caster.h"
 #include "formats/image_io.h"
 #include "formats/solution_io.h"
+#include "localpass/method.h"
+#include "radiosity/solution_faces.h"
+#include "render/albedo_render.h"
+#include "render/irradiance_render.h"
+#include "render/patch_render.h"
+#include "scene/error.h"
+#include "scene/ray_caster.h"
 
 namespace rad::cli {
 namespace {
@@ -38,8 +38,8 @@ struct RenderOptions {
   std::string method = "hemisphere";
   std::string solution;  ///< .vtp from `solve`, for methods that need one
   double tolerance = 0.1;
-  int samples = 64;      ///< montecarlo: rays per pixel
-  std::string stats;     ///< JSON path; default: the output with extension .stats.json
+  int samples = 64;   ///< montecarlo: rays per pixel
+  std::string stats;  ///< JSON path; default: the output with extension .stats.json
   bool no_ambient = false;
   std::string output;
   std::string preview;  ///< PNG path; default: the output with extension .png
@@ -50,8 +50,8 @@ struct RenderOptions {
 };
 
 /// Per-pixel statistics of a local-pass render, as written to the stats JSON.
-nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& image, int face_count, int leaves,
-                                double seconds) {
+nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& image,
+                                int face_count, int leaves, double seconds) {
   IrradianceSummary summary = summarize(image);
   if (image.samples_per_pixel > 0) {
     // Monte Carlo: the file has always reported the rays per pixel in these fields.
@@ -73,11 +73,13 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& i
   out["faces"] = face_count;
   out["octree_leaves"] = leaves;
   out["pixels_gathered"] = summary.pixels;
-  out["emitting_per_pixel"] = {{"mean", summary.gathered_exactly_mean}, {"max", summary.gathered_exactly_max}};
+  out["emitting_per_pixel"] = {{"mean", summary.gathered_exactly_mean},
+                               {"max", summary.gathered_exactly_max}};
   out["emitting_fraction_mean"] = summary.gathered_exactly_mean / faces;
   out["projected_per_pixel"] = {{"mean", summary.projected_mean}, {"max", summary.projected_max}};
   out["projected_fraction_mean"] = summary.projected_mean / faces;
-  out["bound"] = {{"relative_mean", summary.relative_bound_mean}, {"relative_max", summary.relative_bound_max},
+  out["bound"] = {{"relative_mean", summary.relative_bound_mean},
+                  {"relative_max", summary.relative_bound_max},
                   {"max", summary.bound_max}};
   return out;
 }
@@ -96,7 +98,8 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
     // Monte Carlo: the rays per pixel, as the file has always reported.
     const int samples = image.surface[i] ? image.samples_per_pixel : 0;
     projected[i] = static_cast<float>(image.samples_per_pixel > 0 ? samples : image.projected[i]);
-    emitting[i] = static_cast<float>(image.samples_per_pixel > 0 ? samples : image.gathered_exactly[i]);
+    emitting[i] =
+        static_cast<float>(image.samples_per_pixel > 0 ? samples : image.gathered_exactly[i]);
     surface[i] = image.surface[i] ? 1.0f : 0.0f;
   }
   if (!certified) return out;
@@ -115,11 +118,13 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
-  const std::optional<Method> method = parse_method(o.method);  // the local pass's; else a plain render
+  const std::optional<Method> method =
+      parse_method(o.method);  // the local pass's; else a plain render
   const bool local = method.has_value();
   const bool needs_solution = local || o.method == "patches";
   if (needs_solution && o.solution.empty()) {
-    throw InputError("--method " + o.method + " needs --solution (a .vtp written by `radiosity solve`)");
+    throw InputError("--method " + o.method +
+                     " needs --solution (a .vtp written by `radiosity solve`)");
   }
   const Scene scene = load_scene_reporting(o.scene);
   const CameraSpec spec = camera_for(scene, o.scene, "render", o.width, o.height);
@@ -135,20 +140,25 @@ void run_render(const RenderOptions& o) {
       const RayCaster caster(scene);
       ProgressBar bar("render");
       const double total = static_cast<double>(spec.width) * spec.height;
-      const auto progress = [&](size_t done) { bar.update(done / total, std::to_string(done) + " pixels"); };
+      const auto progress = [&](size_t done) {
+        bar.update(done / total, std::to_string(done) + " pixels");
+      };
       IrradianceImage result;
       std::optional<LocalPass> pass;
       if (!is_exact(*method)) {
-        result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces), o.samples, progress);
+        result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces),
+                                    o.samples, progress);
       } else {
         pass.emplace(scene, faces, *method);
         result = render_local_pass(scene, caster, camera, *pass, o.tolerance, progress);
       }
       bar.finish();
       image = result.radiosity;
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      stats = local_pass_stats(o, result, static_cast<int>(faces.size()),
-                               pass ? static_cast<int>(pass->octree().leaves().size()) : 0, seconds);
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      stats =
+          local_pass_stats(o, result, static_cast<int>(faces.size()),
+                           pass ? static_cast<int>(pass->octree().leaves().size()) : 0, seconds);
       pixel_stats = pixel_channels(result, is_exact(*method));
     } else {
       image = render_patches(scene, solution, camera, !o.no_ambient);
@@ -161,15 +171,18 @@ void run_render(const RenderOptions& o) {
   write_exr(o.output, image);
   std::string written = o.output;
   if (!o.no_preview) {
-    std::filesystem::path png = o.preview.empty() ? std::filesystem::path(o.output).replace_extension(".png")
-                                                  : std::filesystem::path(o.preview);
+    std::filesystem::path png = o.preview.empty()
+                                    ? std::filesystem::path(o.output).replace_extension(".png")
+                                    : std::filesystem::path(o.preview);
     write_png_preview(png, image, o.exposure);
     written += ", " + png.string();
   }
   if (local) {
-    const std::filesystem::path path = o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
-                                                       : std::filesystem::path(o.stats);
-    const std::filesystem::path pixels = std::filesystem::path(path).replace_extension().replace_extension(".pixels.exr");
+    const std::filesystem::path path =
+        o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
+                        : std::filesystem::path(o.stats);
+    const std::filesystem::path pixels =
+        std::filesystem::path(path).replace_extension().replace_extension(".pixels.exr");
     write_exr_channels(pixels, pixel_stats);
     stats["pixels_file"] = pixels.filename().string();
     write_text_file(path, [&](std::ostream& file) { file << stats.dump(2) << "\n"; });
@@ -179,12 +192,15 @@ void run_render(const RenderOptions& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool exact = local && is_exact(*method);
   std::cerr << "render: " << o.method
-            << (exact ? " at tolerance " + std::to_string(o.tolerance)
-                      : local ? " with " + std::to_string(o.samples) + " samples per pixel" : std::string())
-            << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote " << written << "\n";
+            << (exact   ? " at tolerance " + std::to_string(o.tolerance)
+                : local ? " with " + std::to_string(o.samples) + " samples per pixel"
+                        : std::string())
+            << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote "
+            << written << "\n";
   if (exact) {
-    std::cerr << "render: faces gathered exactly per pixel: mean " << stats["emitting_per_pixel"]["mean"].get<double>()
-              << " of " << stats["faces"].get<int>() << "; largest relative bound "
+    std::cerr << "render: faces gathered exactly per pixel: mean "
+              << stats["emitting_per_pixel"]["mean"].get<double>() << " of "
+              << stats["faces"].get<int>() << "; largest relative bound "
               << stats["bound"]["relative_max"].get<double>() << "\n";
   }
 }
@@ -193,30 +209,51 @@ void run_render(const RenderOptions& o) {
 
 void add_render_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* sub = app.add_subcommand("render", "Render an image from the scene camera (OpenEXR + PNG preview).");
+  CLI::App* sub = app.add_subcommand(
+      "render", "Render an image from the scene camera (OpenEXR + PNG preview).");
+  sub->footer(
+      "Writes IMAGE.exr (linear float RGB) and a PNG preview beside it (linear x 2^exposure, "
+      "clamped,\n"
+      "sRGB). hemisphere, vertex and montecarlo also write IMAGE.stats.json (counts, bound "
+      "statistics,\n"
+      "time) and IMAGE.pixels.exr (per-pixel channels projected, emitting, surface, and for the "
+      "exact\n"
+      "methods bound and relative_bound; export --stats turns it into a VTK image), and show a "
+      "progress\n"
+      "bar on a terminal. All methods but albedo and facing need --solution, and refuse one solved "
+      "for\n"
+      "a different scene. Parallel over 16x16 pixel tiles; the image does not depend on the "
+      "thread\n"
+      "count. File contents: docs/formats.md.");
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
-  sub->add_option("-m,--method", o->method,
-                  "hemisphere | vertex: the error-bounded local pass (004 Fig. 6) with the exact hemisphere "
-                  "gather or vertex tracing, B = E + rho H at the visible point (needs --solution); "
-                  "montecarlo: the same B with H from --samples cosine-weighted rays into the solution (the "
-                  "baseline; needs --solution); "
-                  "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution); "
-                  "albedo: primary rays only (reflectance; emitters show their emission); "
-                  "facing: albedo x |cos| to the eye, to see the geometry")
+  sub->add_option(
+         "-m,--method", o->method,
+         "hemisphere | vertex: the error-bounded local pass (004 Fig. 6) with the exact hemisphere "
+         "gather or vertex tracing, B = E + rho H at the visible point (needs --solution); "
+         "montecarlo: the same B with H from --samples cosine-weighted rays into the solution (the "
+         "baseline; needs --solution); "
+         "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution); "
+         "albedo: primary rays only (reflectance; emitters show their emission); "
+         "facing: albedo x |cos| to the eye, to see the geometry")
       ->check(CLI::IsMember(render_method_names()))
       ->capture_default_str();
-  add_tolerance_option(sub, &o->tolerance,
-                       "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
-                       "fraction of its value (0: exact)");
+  add_tolerance_option(
+      sub, &o->tolerance,
+      "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
+      "fraction of its value (0: exact)");
   add_samples_option(sub, &o->samples, "pixel");
-  sub->add_option("--stats", o->stats, "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
+  sub->add_option(
+      "--stats", o->stats,
+      "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
   add_solution_option(sub, &o->solution);
   sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");
   sub->add_option("-o,--output", o->output, "Output image (.exr, linear float RGB)")->required();
   sub->add_option("--preview", o->preview, "PNG preview path (default: OUTPUT with .png)");
   sub->add_flag("--no-preview", o->no_preview, "Do not write the PNG preview");
   add_image_size_options(sub, &o->width, &o->height);
-  sub->add_option("--exposure", o->exposure, "Preview exposure in stops (PNG = linear * 2^exposure)")->capture_default_str();
+  sub->add_option("--exposure", o->exposure,
+                  "Preview exposure in stops (PNG = linear * 2^exposure)")
+      ->capture_default_str();
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_render(*o); }; });
 }

@@ -7,9 +7,9 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "formats/solution_io.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
-#include "formats/solution_io.h"
 
 namespace rad::cli {
 namespace {
@@ -46,11 +46,12 @@ void run_solve(const SolveOptions& o) {
   write_solution(o.output, solution, scene);
 
   const SolveStats& s = solution.stats;
-  std::cerr << std::setprecision(4) << "solve: " << s.patches << " patches, " << s.elements << " elements ("
-            << s.refined << " split), " << s.shots << " shots, unshot " << 100 * s.unshot_fraction
-            << "% of emitted" << (s.converged ? "" : " (stopped at --max-shots)") << ", " << s.seconds << " s\n"
-            << "energy: emitted " << rgb(s.emitted) << " = absorbed " << rgb(s.absorbed) << " + escaped "
-            << rgb(s.escaped) << " + unshot " << rgb(s.unshot) << "\n"
+  std::cerr << std::setprecision(4) << "solve: " << s.patches << " patches, " << s.elements
+            << " elements (" << s.refined << " split), " << s.shots << " shots, unshot "
+            << 100 * s.unshot_fraction << "% of emitted"
+            << (s.converged ? "" : " (stopped at --max-shots)") << ", " << s.seconds << " s\n"
+            << "energy: emitted " << rgb(s.emitted) << " = absorbed " << rgb(s.absorbed)
+            << " + escaped " << rgb(s.escaped) << " + unshot " << rgb(s.unshot) << "\n"
             << "wrote " << o.output << "\n";
 }
 
@@ -59,28 +60,61 @@ void run_solve(const SolveOptions& o) {
 void add_solve_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<SolveOptions>();
   SolverSettings& s = o->settings;
-  CLI::App* sub = app.add_subcommand("solve", "Mesh the scene and run progressive refinement radiosity; write the solution (.vtp).");
+  CLI::App* sub = app.add_subcommand(
+      "solve",
+      "Mesh the scene and run progressive refinement radiosity; write the solution (.vtp).");
+  sub->footer(
+      "Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) in RGB: polygons "
+      "are\n"
+      "cut into patches (shooters) of edge --patch-size x the scene diagonal, each "
+      "4^--element-levels\n"
+      "elements (receivers); the patch with the most unshot power shoots, each element receiving\n"
+      "Delta B x FF x V at its centroid (FF: Lambert's formula; V: --visibility-samples jittered "
+      "shadow\n"
+      "rays); elements are split where linear interpolation misses the received radiosity by more "
+      "than\n"
+      "--refine-threshold, during shots and in --refine-passes passes afterwards. Stops when the "
+      "unshot\n"
+      "power is below --unshot of the emitted. Prints a summary and the energy ledger (emitted =\n"
+      "absorbed + escaped + unshot) on stderr. Bitwise deterministic for a seed, whatever the "
+      "thread\n"
+      "count. The algorithm: docs/algorithms.md.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
-  sub->add_option("--patch-size", s.patch_size, "Patch edge length, as a fraction of the scene's diagonal")
-      ->check(CLI::Range(1e-4, 1.0))->capture_default_str();
+  sub->add_option("--patch-size", s.patch_size,
+                  "Patch edge length, as a fraction of the scene's diagonal")
+      ->check(CLI::Range(1e-4, 1.0))
+      ->capture_default_str();
   sub->add_option("--element-levels", s.element_levels, "Initial elements per patch: 4^levels")
-      ->check(CLI::Range(0, 6))->capture_default_str();
+      ->check(CLI::Range(0, 6))
+      ->capture_default_str();
   sub->add_option("--refine-threshold", s.refine_threshold,
-                  "Split an element where its radiosity is off linear (during a shot) or off its neighbours' "
-                  "(after convergence) by more than this fraction of the local radiosity (0: no adaptive refinement)")
-      ->check(CLI::Range(0.0, 1e6))->capture_default_str();
+                  "Split an element where its radiosity is off linear (during a shot) or off its "
+                  "neighbours' "
+                  "(after convergence) by more than this fraction of the local radiosity (0: no "
+                  "adaptive refinement)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   sub->add_option("--refine-passes", s.refine_passes,
-                  "After convergence, passes that split elements differing from a neighbour by more than the threshold")
-      ->check(CLI::Range(0, 20))->capture_default_str();
-  sub->add_option("--min-element-size", s.min_element_size, "Smallest element edge, as a fraction of the diagonal")
-      ->check(CLI::Range(1e-6, 1.0))->capture_default_str();
-  sub->add_option("--unshot", s.unshot_fraction, "Stop when the unshot power is below this fraction of the emitted")
-      ->check(CLI::Range(1e-12, 0.999999))->capture_default_str();
+                  "After convergence, passes that split elements differing from a neighbour by "
+                  "more than the threshold")
+      ->check(CLI::Range(0, 20))
+      ->capture_default_str();
+  sub->add_option("--min-element-size", s.min_element_size,
+                  "Smallest element edge, as a fraction of the diagonal")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  sub->add_option("--unshot", s.unshot_fraction,
+                  "Stop when the unshot power is below this fraction of the emitted")
+      ->check(CLI::Range(1e-12, 0.999999))
+      ->capture_default_str();
   sub->add_option("--max-shots", s.max_shots, "Stop after this many shots in any case")
-      ->check(CLI::Range(0, 100000000))->capture_default_str();
-  sub->add_option("--visibility-samples", s.visibility_samples, "Shadow rays per receiver point and shooter")
-      ->check(CLI::Range(1, 4096))->capture_default_str();
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  sub->add_option("--visibility-samples", s.visibility_samples,
+                  "Shadow rays per receiver point and shooter")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_solve(*o); }; });

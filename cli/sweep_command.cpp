@@ -1,5 +1,6 @@
-// `radiosity sweep SCENE --solution S.vtp -o DIR [--tolerances ...] [--methods ...] [--samples ...]`:
-// the accuracy-versus-tolerance experiment (experiments/sweep.h): results.csv, images, error maps, charts.
+// `radiosity sweep SCENE --solution S.vtp -o DIR [--tolerances ...] [--methods ...] [--samples
+// ...]`: the accuracy-versus-tolerance experiment (experiments/sweep.h): results.csv, images, error
+// maps, charts.
 #include <algorithm>
 #include <chrono>
 #include <iostream>
@@ -28,7 +29,8 @@ struct SweepOptions {
 void run_sweep_command(SweepOptions o) {
   const auto start = std::chrono::steady_clock::now();
   o.settings.methods.clear();
-  for (const std::string& name : o.methods) o.settings.methods.push_back(*parse_method(name));  // CLI11 checked
+  for (const std::string& name : o.methods)
+    o.settings.methods.push_back(*parse_method(name));  // CLI11 checked
   o.settings.reference_method = *parse_method(o.reference_method);
   ensure_display();  // the charts and heat maps need one: fail now, not after the renders
   const ThreadLimit limit(o.threads);
@@ -48,8 +50,8 @@ void run_sweep_command(SweepOptions o) {
   };
   const auto on_row = [&](const SweepRow& row) {
     bar.finish();
-    std::cerr << "sweep: " << row.label() << ": " << row.seconds << " s, max error " << row.error.max << ", RMS "
-              << row.error.rms;
+    std::cerr << "sweep: " << row.label() << ": " << row.seconds << " s, max error "
+              << row.error.max << ", RMS " << row.error.rms;
     if (row.exact()) std::cerr << ", bound violations " << row.violations;
     std::cerr << "\n";
   };
@@ -57,9 +59,11 @@ void run_sweep_command(SweepOptions o) {
   bar.finish();
   write_sweep_figures(o.output, sweep);
   const std::vector<SweepRow>& rows = sweep.rows;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cerr << "sweep: " << rows.size() << " settings in " << seconds << " s; wrote " << o.output
-            << "/results.csv, error_vs_tolerance.png, time_vs_tolerance.png, error_vs_time.png, reference.exr, "
+            << "/results.csv, error_vs_tolerance.png, time_vs_tolerance.png, error_vs_time.png, "
+               "reference.exr, "
                "images/, error_maps/\n";
 }
 
@@ -67,10 +71,28 @@ void run_sweep_command(SweepOptions o) {
 
 void add_sweep_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<SweepOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "sweep",
-      "Accuracy against tolerance: render the exact reference once, then each method at each setting; write "
-      "results.csv, the images, error maps and charts (PNG) to a folder.");
+  CLI::App* sub =
+      app.add_subcommand("sweep",
+                         "Accuracy against tolerance: render the exact reference once, then each "
+                         "method at each setting; write "
+                         "results.csv, the images, error maps and charts (PNG) to a folder.");
+  sub->footer(
+      "Writes to the folder: results.csv (one row per method and setting: seconds, faces "
+      "projected,\n"
+      "max/mean/RMS relative error against the reference, bound violations, largest error over "
+      "bound;\n"
+      "docs/formats.md), reference.exr/.png, images/<method>_T<t>.exr/.png and\n"
+      "images/montecarlo_N<n>.exr/.png, error_maps/<same>.exr/.png (heat maps on one colour scale: "
+      "the\n"
+      "largest error of the exact rows; Monte Carlo's maps clamp there), and three charts with "
+      "log\n"
+      "axes: error_vs_tolerance.png (with T / (1 - T), what the bound promises against the exact\n"
+      "value), time_vs_tolerance.png, error_vs_time.png. A tolerance-0 row of the reference method "
+      "is\n"
+      "the reference render itself. With --reference the reference holds floats, so the bound "
+      "check\n"
+      "allows 2^-23 of the value instead of 1e-8. Prints a line per setting; timings are of the\n"
+      "renders alone. Pictures need an X display: without $DISPLAY a private Xvfb is started.");
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
   add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
@@ -92,7 +114,8 @@ void add_sweep_command(CLI::App& app, Run& run) {
       ->check(CLI::IsMember(exact_method_names()))
       ->capture_default_str();
   sub->add_option("--reference", o->settings.reference_file,
-                  "An exact image of the same size from an earlier run (e.g. a sweep's reference.exr) to use as "
+                  "An exact image of the same size from an earlier run (e.g. a sweep's "
+                  "reference.exr) to use as "
                   "the reference instead of rendering one");
   add_image_size_options(sub, &o->width, &o->height);
   add_threads_option(sub, &o->threads);

@@ -4,16 +4,16 @@
 #include <limits>
 #include <string>
 
-#include "scene/error.h"
 #include "formats/image_io.h"
+#include "scene/error.h"
 
 namespace rad {
 
 ErrorMap relative_error_map(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height) {
-    throw Error("images differ in size: " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                " against the reference's " + std::to_string(reference.width) + "x" +
-                std::to_string(reference.height));
+    throw Error("images differ in size: " + std::to_string(image.width) + "x" +
+                std::to_string(image.height) + " against the reference's " +
+                std::to_string(reference.width) + "x" + std::to_string(reference.height));
   }
   ErrorMap map;
   map.width = image.width;

@@ -7,12 +7,12 @@
 #include <optional>
 #include <sstream>
 
+#include "formats/atomic_file.h"
+#include "formats/image_io.h"
 #include "localpass/local_pass.h"
 #include "localpass/monte_carlo.h"
 #include "scene/error.h"
 #include "scene/ray_caster.h"
-#include "formats/atomic_file.h"
-#include "formats/image_io.h"
 
 namespace rad {
 namespace {
@@ -40,10 +40,10 @@ std::string SweepRow::slug() const {
   return exact() ? name + "_T" + csv_number(tolerance) : name + "_N" + std::to_string(samples);
 }
 
-// The default slack, 1e-8: the exact methods agree to ~1e-9 relative (README, "The local
-// pass"), so a smaller excess over the bound is rounding, not a violation.
-void compare_to_reference(const IrradianceImage& image, const IrradianceImage& reference, SweepRow& row, ErrorMap* map,
-                          double slack_fraction) {
+// The default slack, 1e-8: the exact methods agree to ~1e-9 relative (docs/algorithms.md, "The
+// local pass"), so a smaller excess over the bound is rounding, not a violation.
+void compare_to_reference(const IrradianceImage& image, const IrradianceImage& reference,
+                          SweepRow& row, ErrorMap* map, double slack_fraction) {
   ErrorMap errors = relative_error_map(image.radiosity, reference.radiosity);
   row.error = errors.stats;
   row.violations = row.exact() ? 0 : -1;
@@ -55,17 +55,20 @@ void compare_to_reference(const IrradianceImage& image, const IrradianceImage& r
       const double slack = slack_fraction * reference.radiosity.pixels[i].cwiseAbs().maxCoeff();
       if (!((difference - bound).maxCoeff() <= slack)) ++row.violations;  // NaN counts
       for (int c = 0; c < 3; ++c) {
-        if (bound[c] > 0) row.error_over_bound_max = std::max(row.error_over_bound_max, difference[c] / bound[c]);
+        if (bound[c] > 0)
+          row.error_over_bound_max = std::max(row.error_over_bound_max, difference[c] / bound[c]);
       }
     }
   }
   if (map) *map = std::move(errors);
 }
 
-SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces, const Camera& camera,
-                                const SweepSettings& settings, const std::filesystem::path& folder,
-                                const SweepProgress& progress, const SweepRowDone& row_done) {
-  if (!is_exact(settings.reference_method)) throw Error("the sweep's reference method must be exact");
+SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces,
+                      const Camera& camera, const SweepSettings& settings,
+                      const std::filesystem::path& folder, const SweepProgress& progress,
+                      const SweepRowDone& row_done) {
+  if (!is_exact(settings.reference_method))
+    throw Error("the sweep's reference method must be exact");
   const RayCaster caster(scene);
   const double pixels = static_cast<double>(camera.spec().width) * camera.spec().height;
   const auto reporter = [&](const std::string& what) {
@@ -94,10 +97,12 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
   const bool reference_from_file = !settings.reference_file.empty();
   if (reference_from_file) {
     reference.radiosity = read_exr(settings.reference_file);
-    if (reference.radiosity.width != camera.width() || reference.radiosity.height != camera.height()) {
-      throw InputError(settings.reference_file.string() + ": " + std::to_string(reference.radiosity.width) + "x" +
-                       std::to_string(reference.radiosity.height) + " pixels, but the sweep renders " +
-                       std::to_string(camera.width()) + "x" + std::to_string(camera.height()));
+    if (reference.radiosity.width != camera.width() ||
+        reference.radiosity.height != camera.height()) {
+      throw InputError(
+          settings.reference_file.string() + ": " + std::to_string(reference.radiosity.width) +
+          "x" + std::to_string(reference.radiosity.height) + " pixels, but the sweep renders " +
+          std::to_string(camera.width()) + "x" + std::to_string(camera.height()));
     }
     slack = kFloatSlack;
   } else {
@@ -119,7 +124,8 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
     compare_to_reference(image, reference, row, &map, slack);
     row.image = "images/" + row.slug() + ".exr";
     write_exr(folder / row.image, image.radiosity);
-    write_png_preview(std::filesystem::path(folder / row.image).replace_extension(".png"), image.radiosity);
+    write_png_preview(std::filesystem::path(folder / row.image).replace_extension(".png"),
+                      image.radiosity);
     rows.push_back(std::move(row));
     maps.push_back(std::move(map));
     if (row_done) row_done(rows.back());
@@ -133,7 +139,8 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
         row.method = method;
         row.samples = n;
         const auto start = Clock::now();
-        IrradianceImage image = render_monte_carlo(scene, caster, camera, gatherer, n, reporter(row.label()));
+        IrradianceImage image =
+            render_monte_carlo(scene, caster, camera, gatherer, n, reporter(row.label()));
         record(std::move(row), image, std::chrono::duration<double>(Clock::now() - start).count());
       }
       continue;
@@ -171,15 +178,18 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
 
 void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepRow>& rows) {
   write_text_file(file, [&](std::ostream& out) {
-    out << "method,tolerance,samples,seconds,projected_mean,projected_max,error_max,error_mean,error_rms,"
+    out << "method,tolerance,samples,seconds,projected_mean,projected_max,error_max,error_mean,"
+           "error_rms,"
            "bound_violations,error_over_bound_max,pixels,image\n";
     for (const SweepRow& r : rows) {
       out << method_name(r.method) << ',' << (r.exact() ? csv_number(r.tolerance) : "") << ','
           << (r.exact() ? "" : std::to_string(r.samples)) << ',' << csv_number(r.seconds) << ','
-          << (r.exact() ? csv_number(r.projected_mean) : "") << ',' << (r.exact() ? csv_number(r.projected_max) : "") << ','
-          << csv_number(r.error.max) << ',' << csv_number(r.error.mean) << ',' << csv_number(r.error.rms) << ','
+          << (r.exact() ? csv_number(r.projected_mean) : "") << ','
+          << (r.exact() ? csv_number(r.projected_max) : "") << ',' << csv_number(r.error.max) << ','
+          << csv_number(r.error.mean) << ',' << csv_number(r.error.rms) << ','
           << (r.exact() ? std::to_string(r.violations) : "") << ','
-          << (r.exact() ? csv_number(r.error_over_bound_max) : "") << ',' << r.error.pixels << ',' << r.image << '\n';
+          << (r.exact() ? csv_number(r.error_over_bound_max) : "") << ',' << r.error.pixels << ','
+          << r.image << '\n';
     }
   });
 }

@@ -37,12 +37,12 @@ struct SweepRow {
   int samples = 0;       ///< montecarlo
   double seconds = 0;    ///< the render alone (faces and octree set up before the clock)
   double projected_mean = 0, projected_max = 0;  ///< faces projected per pixel; 0 for montecarlo
-  ErrorStats error;      ///< relative to the reference (error_map.h)
+  ErrorStats error;                              ///< relative to the reference (error_map.h)
   /// Pixels where |B - B_ref| > bound on some channel (beyond 1e-12 relative rounding slack);
   /// -1 for montecarlo, which has no bound.
   long violations = -1;
   double error_over_bound_max = 0;  ///< max over pixels of |B - B_ref| / bound, where bound > 0
-  std::string image;     ///< file name of its image, relative to the output folder
+  std::string image;                ///< file name of its image, relative to the output folder
 
   bool exact() const { return is_exact(method); }
   std::string label() const;  ///< "hemisphere T=0.05", "montecarlo N=64"
@@ -53,8 +53,8 @@ struct SweepRow {
 /// the bound check (SweepRow's error, violations, error_over_bound_max).
 /// `slack` is the fraction of the reference's value an excess over the bound may have and
 /// still count as rounding.
-void compare_to_reference(const IrradianceImage& image, const IrradianceImage& reference, SweepRow& row,
-                          ErrorMap* map = nullptr, double slack = 1e-8);
+void compare_to_reference(const IrradianceImage& image, const IrradianceImage& reference,
+                          SweepRow& row, ErrorMap* map = nullptr, double slack = 1e-8);
 
 /// Reports progress: `what` is being rendered, `done` of it in [0, 1].
 using SweepProgress = std::function<void(const std::string& what, double done)>;
@@ -74,9 +74,10 @@ struct SweepResult {
 /// Runs the sweep and writes into `folder`: results.csv; reference.exr/.png; images/<slug>.exr
 /// and .png; error_maps/<slug>.exr. The pictures (heat maps and charts) are viz's
 /// (viz/sweep_figures.h). Throws Error.
-SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces, const Camera& camera,
-                                const SweepSettings& settings, const std::filesystem::path& folder,
-                                const SweepProgress& progress = {}, const SweepRowDone& row_done = {});
+SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces,
+                      const Camera& camera, const SweepSettings& settings,
+                      const std::filesystem::path& folder, const SweepProgress& progress = {},
+                      const SweepRowDone& row_done = {});
 
 /// results.csv: a header and one line per row (columns documented in docs/formats.md).
 void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepRow>& rows);

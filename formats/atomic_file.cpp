@@ -13,7 +13,9 @@ AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)
   const std::filesystem::path folder = target_.has_parent_path() ? target_.parent_path() : ".";
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec) throw Error(target_.string() + ": cannot create folder '" + folder.string() + "': " + ec.message());
+  if (ec)
+    throw Error(target_.string() + ": cannot create folder '" + folder.string() +
+                "': " + ec.message());
   // ".name.tmpPID.ext": hidden, unique per process, and keeps the extension writers look at.
   std::string name(1, '.');
   name.append(target_.stem().string()).append(".tmp").append(std::to_string(::getpid()));
@@ -35,7 +37,8 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-void write_text_file(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write) {
+void write_text_file(const std::filesystem::path& target,
+                     const std::function<void(std::ostream&)>& write) {
   AtomicFile out(target);
   {
     std::ofstream file(out.temp_path());

@@ -31,6 +31,7 @@ class AtomicFile {
 
 /// Writes a text file through an AtomicFile: `write` fills the stream; a failed write throws
 /// Error naming the target, and the target is then untouched.
-void write_text_file(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write);
+void write_text_file(const std::filesystem::path& target,
+                     const std::function<void(std::ostream&)>& write);
 
 }  // namespace rad

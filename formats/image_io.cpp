@@ -13,8 +13,8 @@
 #include <cmath>
 #include <exception>
 
-#include "scene/error.h"
 #include "formats/atomic_file.h"
+#include "scene/error.h"
 
 namespace rad {
 
@@ -29,8 +29,9 @@ void write_exr_channels(const std::filesystem::path& file, const ChannelImage& i
       if (values.size() != n) throw Error("channel " + name + " has the wrong size");
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
       // OpenEXR only reads from the frame buffer; the cast drops const for its interface.
-      frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
-                                    sizeof(float), sizeof(float) * image.width));
+      frame.insert(
+          name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
+                           sizeof(float), sizeof(float) * image.width));
     }
     Imf::OutputFile exr(out.temp_path().c_str(), header);
     exr.setFrameBuffer(frame);
@@ -42,7 +43,8 @@ void write_exr_channels(const std::filesystem::path& file, const ChannelImage& i
 }
 
 ChannelImage read_exr_channels(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": no such image file");
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(file.string() + ": no such image file");
   try {
     Imf::InputFile exr(file.c_str());
     const Imath::Box2i window = exr.header().dataWindow();
@@ -56,9 +58,11 @@ ChannelImage read_exr_channels(const std::filesystem::path& file) {
       values.assign(n, 0.0f);
       // The slice base is shifted so that pixel (min.x, min.y) lands at index 0.
       char* base = reinterpret_cast<char*>(values.data()) -
-                   (static_cast<ptrdiff_t>(window.min.x) + static_cast<ptrdiff_t>(window.min.y) * image.width) *
+                   (static_cast<ptrdiff_t>(window.min.x) +
+                    static_cast<ptrdiff_t>(window.min.y) * image.width) *
                        static_cast<ptrdiff_t>(sizeof(float));
-      frame.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * image.width, 1, 1, 0.0));
+      frame.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                         sizeof(float) * image.width, 1, 1, 0.0));
     }
     exr.setFrameBuffer(frame);
     exr.readPixels(window.min.y, window.max.y);

@@ -58,11 +58,15 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
     }
     first_row = false;
     if (fields.size() != 6) {
-      throw InputError(where + "expected 6 fields x,y,z,nx,ny,nz, got " + std::to_string(fields.size()));
+      throw InputError(where + "expected 6 fields x,y,z,nx,ny,nz, got " +
+                       std::to_string(fields.size()));
     }
     for (size_t i = 0; i < 6; ++i) {
-      if (!parse_number(fields[i], &v[i])) throw InputError(where + "field " + std::to_string(i + 1) + " '" + fields[i] + "' is not a number");
-      if (!std::isfinite(v[i])) throw InputError(where + "field " + std::to_string(i + 1) + " is not finite");
+      if (!parse_number(fields[i], &v[i]))
+        throw InputError(where + "field " + std::to_string(i + 1) + " '" + fields[i] +
+                         "' is not a number");
+      if (!std::isfinite(v[i]))
+        throw InputError(where + "field " + std::to_string(i + 1) + " is not finite");
     }
     const Vec3 n(v[3], v[4], v[5]);
     if (!(n.norm() > 0)) throw InputError(where + "the normal (nx, ny, nz) is zero");
@@ -72,15 +76,16 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
   return points;
 }
 
-void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points, const std::vector<Rgb>& irradiance,
-                     const std::vector<double>& bound) {
+void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
+                     const std::vector<Rgb>& irradiance, const std::vector<double>& bound) {
   out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound\n";
   std::string row;
   for (size_t i = 0; i < points.size(); ++i) {
     const ProbePoint& p = points[i];
     const Rgb& e = irradiance[i];
     row.clear();
-    for (const double v : {p.x.x(), p.x.y(), p.x.z(), p.n.x(), p.n.y(), p.n.z(), e.x(), e.y(), e.z(), bound[i]}) {
+    for (const double v :
+         {p.x.x(), p.x.y(), p.x.z(), p.n.x(), p.n.y(), p.n.z(), e.x(), e.y(), e.z(), bound[i]}) {
       // The shortest text that reads back to the same double.
       char text[32];
       const auto end = std::to_chars(text, text + sizeof(text), v).ptr;

@@ -22,7 +22,7 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file);
 
 /// Writes `x,y,z,nx,ny,nz,E_r,E_g,E_b,bound` with a header; each number in the shortest form
 /// that reads back exactly. `bound` is the certified bound on each result's error.
-void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points, const std::vector<Rgb>& irradiance,
-                     const std::vector<double>& bound);
+void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
+                     const std::vector<Rgb>& irradiance, const std::vector<double>& bound);
 
 }  // namespace rad

@@ -16,11 +16,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "formats/atomic_file.h"
+#include "formats/patch_mesh_polydata.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
-#include "formats/atomic_file.h"
-#include "formats/patch_mesh_polydata.h"
 
 // JSON for Eigen's RGB triples, and field lists for the settings and statistics: one list
 // serves both writing and reading.
@@ -28,16 +28,19 @@ namespace nlohmann {
 template <>
 struct adl_serializer<rad::Rgb> {
   static void to_json(json& j, const rad::Rgb& v) { j = {v.x(), v.y(), v.z()}; }
-  static void from_json(const json& j, rad::Rgb& v) { v = {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+  static void from_json(const json& j, rad::Rgb& v) {
+    v = {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+  }
 };
 }  // namespace nlohmann
 
 namespace rad {
 
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolverSettings, patch_size, element_levels, refine_threshold, refine_passes,
-                                   min_element_size, unshot_fraction, max_shots, visibility_samples, seed)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolveStats, shots, patches, elements, refined, seconds, emitted, absorbed,
-                                   escaped, unshot, unshot_fraction, converged)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolverSettings, patch_size, element_levels, refine_threshold,
+                                   refine_passes, min_element_size, unshot_fraction, max_shots,
+                                   visibility_samples, seed)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolveStats, shots, patches, elements, refined, seconds, emitted,
+                                   absorbed, escaped, unshot, unshot_fraction, converged)
 
 namespace {
 
@@ -124,14 +127,16 @@ PatchMeshData build_patch_mesh(const Solution& solution, const Scene& scene) {
     face_rho.push_back(m.reflectance);
     cell_elements.push_back(mesh.element(f));
   }
-  for (auto* a : std::initializer_list<vtkAbstractArray*>{radiosity, emission, reflectance, area, parent, patch, level}) {
+  for (auto* a : std::initializer_list<vtkAbstractArray*>{radiosity, emission, reflectance, area,
+                                                          parent, patch, level}) {
     poly->GetCellData()->AddArray(a);
   }
   poly->GetCellData()->SetActiveScalars("radiosity");
 
   // Point data: the Gouraud vertex values (no ambient), for smooth display in ParaView.
   auto vertex_radiosity = doubles("vertex_radiosity", 3);
-  for (const Rgb& v : mesh.vertex_radiosity(solution, face_rho, false)) add_rgb(vertex_radiosity, v);
+  for (const Rgb& v : mesh.vertex_radiosity(solution, face_rho, false))
+    add_rgb(vertex_radiosity, v);
   poly->GetPointData()->AddArray(vertex_radiosity);
   return {poly, std::move(cell_elements)};
 }
@@ -142,7 +147,8 @@ vtkSmartPointer<vtkPolyData> patch_mesh_polydata(const Solution& solution, const
   return build_patch_mesh(solution, scene).poly;
 }
 
-void write_solution(const std::filesystem::path& file, const Solution& solution, const Scene& scene) {
+void write_solution(const std::filesystem::path& file, const Solution& solution,
+                    const Scene& scene) {
   const PatchMeshData mesh = build_patch_mesh(solution, scene);
   vtkPolyData* poly = mesh.poly;
   std::vector<const std::vector<Vec3>*> element_corners;
@@ -202,7 +208,8 @@ class FieldReader {
   }
   std::string string(const char* name) const {
     auto* a = vtkStringArray::SafeDownCast(poly_->GetFieldData()->GetAbstractArray(name));
-    if (!a || a->GetNumberOfValues() != 1) fail(std::string("missing field data string \"") + name + "\"");
+    if (!a || a->GetNumberOfValues() != 1)
+      fail(std::string("missing field data string \"") + name + "\"");
     return a->GetValue(0);
   }
   Json json(const char* name) const {
@@ -220,7 +227,8 @@ class FieldReader {
     vtkIdType next = 0;
     for (vtkIdType i = 0; i < counts->GetNumberOfTuples(); ++i) {
       const int n = static_cast<int>(counts->GetTuple1(i));
-      if (n < 3 || next + n > xyz->GetNumberOfTuples()) fail(std::string("malformed \"") + count_name + "\"");
+      if (n < 3 || next + n > xyz->GetNumberOfTuples())
+        fail(std::string("malformed \"") + count_name + "\"");
       std::vector<Vec3> polygon;
       for (int k = 0; k < n; ++k, ++next) {
         double p[3];
@@ -236,8 +244,9 @@ class FieldReader {
   vtkDataArray* check(vtkDataArray* a, const char* name, int components, const char* kind) const {
     if (!a) fail(std::string("missing ") + kind + " data array \"" + name + "\"");
     if (a->GetNumberOfComponents() != components) {
-      fail(std::string(kind) + " data array \"" + name + "\" has " + std::to_string(a->GetNumberOfComponents()) +
-           " components, expected " + std::to_string(components));
+      fail(std::string(kind) + " data array \"" + name + "\" has " +
+           std::to_string(a->GetNumberOfComponents()) + " components, expected " +
+           std::to_string(components));
     }
     return a;
   }
@@ -254,7 +263,8 @@ Rgb rgb_at(vtkDataArray* a, vtkIdType i) {
 }  // namespace
 
 Solution read_solution(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) throw InputError(file.string() + ": no such solution file");
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(file.string() + ": no such solution file");
   vtkNew<vtkXMLPolyDataReader> reader;
   if (!reader->CanReadFile(file.c_str())) {
     throw InputError(file.string() + ": not a VTK XML PolyData (.vtp) file");
@@ -283,8 +293,10 @@ Solution read_solution(const std::filesystem::path& file) {
   vtkDataArray* patch_unshot = in.field("patch_unshot", 3);
   vtkDataArray* patch_normal = in.field("patch_normal", 3);
   const vtkIdType patch_count = static_cast<vtkIdType>(patch_corners.size());
-  if (patch_polygon->GetNumberOfTuples() != patch_count || patch_radiosity->GetNumberOfTuples() != patch_count ||
-      patch_unshot->GetNumberOfTuples() != patch_count || patch_normal->GetNumberOfTuples() != patch_count) {
+  if (patch_polygon->GetNumberOfTuples() != patch_count ||
+      patch_radiosity->GetNumberOfTuples() != patch_count ||
+      patch_unshot->GetNumberOfTuples() != patch_count ||
+      patch_normal->GetNumberOfTuples() != patch_count) {
     in.fail("patch arrays disagree in length");
   }
   for (vtkIdType i = 0; i < patch_count; ++i) {
@@ -306,14 +318,16 @@ Solution read_solution(const std::filesystem::path& file) {
   vtkDataArray* parent = in.cell("parent_polygon", 1);
   vtkDataArray* patch = in.cell("patch", 1);
   vtkDataArray* level = in.cell("level", 1);
-  if (static_cast<vtkIdType>(element_corners.size()) != cells || radiosity->GetNumberOfTuples() != cells) {
+  if (static_cast<vtkIdType>(element_corners.size()) != cells ||
+      radiosity->GetNumberOfTuples() != cells) {
     in.fail("element arrays disagree with the number of cells");
   }
   for (vtkIdType i = 0; i < cells; ++i) {
     Element e;
     e.polygon = static_cast<int>(parent->GetTuple1(i));
     e.patch = static_cast<int>(patch->GetTuple1(i));
-    if (e.patch < 0 || e.patch >= patch_count) in.fail("cell " + std::to_string(i) + ": patch index out of range");
+    if (e.patch < 0 || e.patch >= patch_count)
+      in.fail("cell " + std::to_string(i) + ": patch index out of range");
     e.level = static_cast<int>(level->GetTuple1(i));
     e.corners = element_corners[i];
     element_geometry(e.corners, &e.area, &e.centroid);

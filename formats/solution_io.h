@@ -15,7 +15,8 @@
 namespace rad {
 
 /// Writes atomically (temporary file + rename). `scene` supplies materials for the cell data.
-void write_solution(const std::filesystem::path& file, const Solution& solution, const Scene& scene);
+void write_solution(const std::filesystem::path& file, const Solution& solution,
+                    const Scene& scene);
 
 /// Reads a solution written by write_solution. Elements are the leaves (no tree). Throws
 /// InputError naming the file and the missing or malformed array.

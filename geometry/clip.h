@@ -27,26 +27,29 @@ inline Vec3 interpolated_crossing(const Vec3& a, const Vec3& b, double da, doubl
 /// vertex is repeated. `crossing(a, b, da, db)` places it (interpolated_crossing, or a caller's
 /// more exact construction). The result may have fewer than 3 vertices. Cost O(count).
 template <typename Loop, typename Distance, typename Crossing, typename Emit>
-void clip_loop(const Loop& loop, size_t count, const Distance& distance, const Crossing& crossing, const Emit& emit) {
+void clip_loop(const Loop& loop, size_t count, const Distance& distance, const Crossing& crossing,
+               const Emit& emit) {
   for (size_t i = 0; i < count; ++i) {
     const Vec3& a = loop[i];
     const Vec3& b = loop[(i + 1) % count];
     const double da = distance(a), db = distance(b);
     const int edge = static_cast<int>(i);
     if (da >= 0) emit(a, da == 0 && db < 0 ? kEdgeAlongCut : edge);
-    if ((da > 0 && db < 0) || (da < 0 && db > 0)) emit(crossing(a, b, da, db), da > 0 ? kEdgeAlongCut : edge);
+    if ((da > 0 && db < 0) || (da < 0 && db > 0))
+      emit(crossing(a, b, da, db), da > 0 ? kEdgeAlongCut : edge);
   }
 }
 
 /// Clips a planar polygon to the half-space n . (p - point) >= 0 (one pass of clip_loop, exact
 /// in 3D, before any projection). Vertices on the plane are kept. Returns the clipped polygon
 /// (possibly empty; possibly with fewer than 3 vertices).
-inline std::vector<Vec3> clip_to_halfspace(const std::vector<Vec3>& polygon, const Vec3& point, const Vec3& n) {
+inline std::vector<Vec3> clip_to_halfspace(const std::vector<Vec3>& polygon, const Vec3& point,
+                                           const Vec3& n) {
   std::vector<Vec3> out;
   out.reserve(polygon.size() + 2);
   clip_loop(
-      polygon, polygon.size(), [&](const Vec3& p) { return n.dot(p - point); }, interpolated_crossing,
-      [&](const Vec3& p, int) { out.push_back(p); });
+      polygon, polygon.size(), [&](const Vec3& p) { return n.dot(p - point); },
+      interpolated_crossing, [&](const Vec3& p, int) { out.push_back(p); });
   return out;
 }
 

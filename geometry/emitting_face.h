@@ -12,7 +12,8 @@
 namespace rad {
 
 struct EmittingFace {
-  int polygon = -1;            ///< The scene polygon it is part of (an id: coplanar order, same-polygon tests).
+  int polygon =
+      -1;  ///< The scene polygon it is part of (an id: coplanar order, same-polygon tests).
   std::vector<Vec3> vertices;  ///< Convex, counter-clockwise about `normal`.
   Rgb exitance = Rgb::Zero();  ///< Radiated from the front side only [W/m^2].
   /// Per edge i (vertices i -> i+1): true when it lies on the polygon's boundary. Only such

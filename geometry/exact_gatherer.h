@@ -27,7 +27,8 @@ class ExactGatherSession {
   /// hide them: each face that may hide part of one of them must be in `radiating` or
   /// `occluders` of this call (the local pass's culling lists them). Faces radiate once: a face
   /// radiated by an earlier step must not radiate again. Returns the total so far.
-  virtual ExactGatherTotal step(const std::vector<int>& radiating, const std::vector<int>& occluders) = 0;
+  virtual ExactGatherTotal step(const std::vector<int>& radiating,
+                                const std::vector<int>& occluders) = 0;
   /// Faces projected or traced so far, counted with repetition across steps where a method
   /// starts each step afresh (vertex tracing): the work done.
   virtual int projected() const = 0;

@@ -39,7 +39,8 @@ inline double lambert_edge(const Vec3& a, const Vec3& b, const Vec3& n, const Ve
 /// and FF = |sum over loops|.
 inline double lambert_loop(std::span<const Vec3> loop, const Vec3& n) {
   double sum = 0;
-  for (size_t i = 0; i < loop.size(); ++i) sum += lambert_edge(loop[i], loop[(i + 1) % loop.size()], n);
+  for (size_t i = 0; i < loop.size(); ++i)
+    sum += lambert_edge(loop[i], loop[(i + 1) % loop.size()], n);
   return sum / (2 * std::numbers::pi);
 }
 

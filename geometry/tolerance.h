@@ -20,7 +20,9 @@ struct Tolerance {
   /// The policy for a scene whose bounding box has this diagonal: 1e-12 of it in the plane
   /// (far above the rounding of coordinates, far below any feature a scene models), 1e-9 as
   /// padding, 1e-6 as the ray offset.
-  static Tolerance for_scene_size(double diagonal) { return {1e-12 * diagonal, 1e-9 * diagonal, 1e-6 * diagonal}; }
+  static Tolerance for_scene_size(double diagonal) {
+    return {1e-12 * diagonal, 1e-9 * diagonal, 1e-6 * diagonal};
+  }
 };
 
 }  // namespace rad

@@ -14,9 +14,14 @@ namespace rad {
 class HemisphereGatherer::Session final : public ExactGatherSession {
  public:
   Session(const HemisphereGatherer& gatherer, const Vec3& x, const Vec3& n)
-      : gatherer_(gatherer), x_(x), n_(n), added_(gatherer.faces_.size(), 0), radiating_(gatherer.faces_.size(), 0) {}
+      : gatherer_(gatherer),
+        x_(x),
+        n_(n),
+        added_(gatherer.faces_.size(), 0),
+        radiating_(gatherer.faces_.size(), 0) {}
 
-  ExactGatherTotal step(const std::vector<int>& radiating, const std::vector<int>& occluders) override {
+  ExactGatherTotal step(const std::vector<int>& radiating,
+                        const std::vector<int>& occluders) override {
     // Project what is new, nearest first.
     std::vector<std::pair<double, int>> order;
     for (const std::vector<int>* list : {&radiating, &occluders}) {
@@ -40,7 +45,8 @@ class HemisphereGatherer::Session final : public ExactGatherSession {
       const EmittingFace& face = gatherer_.faces_[f.id];
       const double ff = f.region.form_factor(n_);
       covered += ff;
-      if (is_in_front_of(x_, face.vertices.front(), face.normal)) total.irradiance += ff * face.exitance;
+      if (is_in_front_of(x_, face.vertices.front(), face.normal))
+        total.irradiance += ff * face.exitance;
     }
     total.covered = covered;
     return total;
@@ -59,7 +65,8 @@ HemisphereGatherer::HemisphereGatherer(std::vector<EmittingFace> faces, const To
     : faces_(std::move(faces)), in_plane_(tolerance.in_plane) {
   for (const EmittingFace& f : faces_) {
     if (f.vertices.size() < 3) {
-      throw std::invalid_argument("hemisphere gather: a face of polygon " + std::to_string(f.polygon) + " has " +
+      throw std::invalid_argument("hemisphere gather: a face of polygon " +
+                                  std::to_string(f.polygon) + " has " +
                                   std::to_string(f.vertices.size()) + " vertices");
     }
     Vec3 centre = Vec3::Zero();
@@ -76,10 +83,12 @@ double HemisphereGatherer::distance_bound(int k, const Vec3& x) const {
   return std::max(0.0, (centres_[k] - x).norm() - radii_[k]);
 }
 
-HemisphereGather HemisphereGatherer::gather(const Vec3& x, const Vec3& n, bool keep_fragments) const {
+HemisphereGather HemisphereGatherer::gather(const Vec3& x, const Vec3& n,
+                                            bool keep_fragments) const {
   std::vector<std::pair<double, int>> order;
   order.reserve(faces_.size());
-  for (size_t k = 0; k < faces_.size(); ++k) order.emplace_back(distance_bound(static_cast<int>(k), x), static_cast<int>(k));
+  for (size_t k = 0; k < faces_.size(); ++k)
+    order.emplace_back(distance_bound(static_cast<int>(k), x), static_cast<int>(k));
   std::sort(order.begin(), order.end());
 
   hemi::VisibleSurface visible;
@@ -113,7 +122,8 @@ void HemisphereGatherer::project(int k, const Vec3& x, const Vec3& n, void* visi
   if (region.empty()) return;
   // Occluder id = face index: faces are ordered by polygon, so coplanar overlapping polygons
   // resolve to the lower polygon index, as in the vertex tracer.
-  static_cast<hemi::VisibleSurface*>(visible)->insert(hemi::Occluder{k, face.normal, offset}, region);
+  static_cast<hemi::VisibleSurface*>(visible)->insert(hemi::Occluder{k, face.normal, offset},
+                                                      region);
 }
 
 }  // namespace rad

@@ -22,8 +22,8 @@ struct VisibleFragment {
 
 /// What a whole gather found.
 struct HemisphereGather {
-  Rgb irradiance = Rgb::Zero();            ///< H(x) [W/m^2]: sum of visible form factors x exitance.
-  double covered = 0;                      ///< Sum of all visible form factors (<= 1; 1 when enclosed).
+  Rgb irradiance = Rgb::Zero();  ///< H(x) [W/m^2]: sum of visible form factors x exitance.
+  double covered = 0;            ///< Sum of all visible form factors (<= 1; 1 when enclosed).
   std::vector<VisibleFragment> fragments;  ///< Filled when asked for.
 };
 

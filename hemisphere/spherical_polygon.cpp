@@ -38,7 +38,8 @@ SphericalPolygon::SphericalPolygon(const std::vector<Vec3>& directions) {
   if (measure < 0) std::reverse(unit.begin(), unit.end());
   // Edge planes from the input directions; the caller's polygon edges are not degenerate.
   std::vector<Vec3> normals;
-  for (size_t i = 0; i < unit.size(); ++i) normals.push_back(unit[i].cross(unit[(i + 1) % unit.size()]).normalized());
+  for (size_t i = 0; i < unit.size(); ++i)
+    normals.push_back(unit[i].cross(unit[(i + 1) % unit.size()]).normalized());
   for (const Vec3& n : normals) {
     if (!n.allFinite()) return;
   }
@@ -76,7 +77,8 @@ bool SphericalPolygon::contains(const Vec3& d) const {
   return true;
 }
 
-std::optional<Vec3> arc_intersection(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+std::optional<Vec3> arc_intersection(const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                                     const Vec3& b1) {
   const Vec3 na = a0.cross(a1), nb = b0.cross(b1);
   const Vec3 line = na.cross(nb);
   const double length = line.norm();
@@ -153,7 +155,8 @@ std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3
       }
     }
   }
-  return {SphericalPolygon(std::move(pos_v), std::move(pos_n)), SphericalPolygon(std::move(neg_v), std::move(neg_n))};
+  return {SphericalPolygon(std::move(pos_v), std::move(pos_n)),
+          SphericalPolygon(std::move(neg_v), std::move(neg_n))};
 }
 
 Vec3 SphericalPolygon::interior_direction() const {
@@ -164,7 +167,8 @@ Vec3 SphericalPolygon::interior_direction() const {
 
 std::vector<SphericalPolygon> intersect(const SphericalPolygon& a, const SphericalPolygon& b) {
   SphericalPolygon inside = a;
-  for (size_t i = 0; i < b.vertices().size() && !inside.empty(); ++i) inside = inside.split(b.edge_normal(i)).first;
+  for (size_t i = 0; i < b.vertices().size() && !inside.empty(); ++i)
+    inside = inside.split(b.edge_normal(i)).first;
   if (inside.empty()) return {};
   return {inside};
 }
@@ -190,8 +194,8 @@ double SphericalPolygon::form_factor(const Vec3& n) const {
   return std::abs(sum) / (2 * std::numbers::pi);
 }
 
-double form_factor_with_holes(const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes,
-                              const Vec3& n) {
+double form_factor_with_holes(const std::vector<Vec3>& outer,
+                              const std::vector<std::vector<Vec3>>& holes, const Vec3& n) {
   double sum = lambert_loop(outer, n);
   for (const auto& hole : holes) sum += lambert_loop(hole, n);
   return std::abs(sum);

@@ -48,8 +48,9 @@ class SphericalPolygon {
   Vec3 interior_direction() const;
 
   /// Lambert's contour formula (geometry/lambert.h) with the stored edge planes: the form
-  /// factor for a receiver with unit normal n at x, (1 / 2 pi) |sum_i angle(v_i, v_i+1) n . normal_i|. Assumes the
-  /// polygon lies in the receiver's upper hemisphere (n . v >= 0 for all vertices).
+  /// factor for a receiver with unit normal n at x, (1 / 2 pi) |sum_i angle(v_i, v_i+1) n .
+  /// normal_i|. Assumes the polygon lies in the receiver's upper hemisphere (n . v >= 0 for all
+  /// vertices).
   double form_factor(const Vec3& n) const;
 
  private:
@@ -65,7 +66,8 @@ class SphericalPolygon {
 /// normalized cross product of their planes' normals, taking the one of its two antipodes that
 /// lies within both arcs. Nothing when the arcs do not cross, touch only at an endpoint, or lie
 /// on one great circle (the caller then compares endpoints).
-std::optional<Vec3> arc_intersection(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
+std::optional<Vec3> arc_intersection(const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                                     const Vec3& b1);
 
 /// Boolean operations on convex spherical polygons, with the same exact splits the visible-
 /// surface structure uses. Results are sets of convex pieces, which also represent concave
@@ -80,7 +82,7 @@ std::vector<SphericalPolygon> subtract(const SphericalPolygon& a, const Spherica
 
 /// Form factor of a spherical polygon with holes: |lambert_loop(outer) + sum lambert_loop(hole)|
 /// (geometry/lambert.h) where every hole runs opposite to the outer loop.
-double form_factor_with_holes(const std::vector<Vec3>& outer, const std::vector<std::vector<Vec3>>& holes,
-                              const Vec3& n);
+double form_factor_with_holes(const std::vector<Vec3>& outer,
+                              const std::vector<std::vector<Vec3>>& holes, const Vec3& n);
 
 }  // namespace rad::hemi

@@ -90,7 +90,8 @@ void VisibleSurface::carve(int node, int occupant, const SphericalPolygon& piece
 std::vector<Fragment> VisibleSurface::fragments() const {
   std::vector<Fragment> out;
   for (const Node& n : nodes_) {
-    if (n.leaf() && n.occupant >= 0 && !n.region.empty()) out.push_back({occluders_[n.occupant].id, n.region});
+    if (n.leaf() && n.occupant >= 0 && !n.region.empty())
+      out.push_back({occluders_[n.occupant].id, n.region});
   }
   return out;
 }

@@ -19,9 +19,9 @@ namespace rad::hemi {
 
 /// A planar convex polygon seen from x = origin.
 struct Occluder {
-  int id = -1;           ///< Caller's identifier (e.g. scene polygon index).
-  Vec3 normal;           ///< Unit normal of its plane.
-  double offset = 0;     ///< normal . p for any point p of the plane (relative to x); != 0.
+  int id = -1;        ///< Caller's identifier (e.g. scene polygon index).
+  Vec3 normal;        ///< Unit normal of its plane.
+  double offset = 0;  ///< normal . p for any point p of the plane (relative to x); != 0.
   /// Depth along unit direction d: the distance from x to the plane (positive in its cone).
   double depth(const Vec3& d) const { return offset / normal.dot(d); }
 };
@@ -56,8 +56,8 @@ class VisibleSurface {
     Vec3 plane = Vec3::Zero();  ///< Internal nodes: unit normal of a plane through x.
     int positive = -1;          ///< Child on the plane . d >= 0 side (inside the carving edge).
     int negative = -1;
-    int occupant = -1;          ///< Leaves: index into occluders_, or -1 when empty.
-    SphericalPolygon region;    ///< Occupied leaves: the cell.
+    int occupant = -1;        ///< Leaves: index into occluders_, or -1 when empty.
+    SphericalPolygon region;  ///< Occupied leaves: the cell.
     bool leaf() const { return positive < 0; }
   };
 

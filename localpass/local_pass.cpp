@@ -24,13 +24,16 @@ std::vector<OctreeItem> octree_items(const std::vector<EmittingFace>& faces) {
 
 LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
                      const LocalPassSettings& settings)
-    : faces_(std::move(faces)), occlusion_culling_(settings.occlusion_culling),
-      octree_(octree_items(faces_), settings.octree), gatherer_(make_exact_gatherer(method, scene, faces_)),
+    : faces_(std::move(faces)),
+      occlusion_culling_(settings.occlusion_culling),
+      octree_(octree_items(faces_), settings.octree),
+      gatherer_(make_exact_gatherer(method, scene, faces_)),
       culling_(scene, faces_, octree_) {}
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
   LocalPassResult result;
-  const OcclusionSplit split = occlusion_culling_ ? culling_.split(x, n) : culling_.split_without_culling(x, n);
+  const OcclusionSplit split =
+      occlusion_culling_ ? culling_.split(x, n) : culling_.split_without_culling(x, n);
 
   // Faces nothing can hide: exact by Lambert's formula alone.
   Rgb unoccluded = Rgb::Zero();
@@ -55,13 +58,16 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
       bound += unoccluded_form_factor(faces_[f], x, n) * faces_[f].exitance;
       bmax = bmax.cwiseMax(faces_[f].exitance);
     }
-    if (bound.maxCoeff() > 0) entries.push_back({bound.maxCoeff(), static_cast<int>(g), bound, bmax});
+    if (bound.maxCoeff() > 0)
+      entries.push_back({bound.maxCoeff(), static_cast<int>(g), bound, bmax});
   }
   std::sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
-    return a.key != b.key ? a.key > b.key : split.shadowed[a.group].leaf < split.shadowed[b.group].leaf;
+    return a.key != b.key ? a.key > b.key
+                          : split.shadowed[a.group].leaf < split.shadowed[b.group].leaf;
   });
   // From entry i on: the sum of the bounds and the largest radiosity.
-  std::vector<Rgb> bound_sum(entries.size() + 1, Rgb::Zero()), bmax_max(entries.size() + 1, Rgb::Zero());
+  std::vector<Rgb> bound_sum(entries.size() + 1, Rgb::Zero()),
+      bmax_max(entries.size() + 1, Rgb::Zero());
   for (size_t i = entries.size(); i-- > 0;) {
     bound_sum[i] = bound_sum[i + 1] + entries[i].bound;
     bmax_max[i] = bmax_max[i + 1].cwiseMax(entries[i].bmax);

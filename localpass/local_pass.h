@@ -43,14 +43,15 @@ struct LocalPassSettings {
 };
 
 struct LocalPassResult {
-  Rgb irradiance = Rgb::Zero();  ///< H(x) estimate [W/m^2]: the exact part plus half the remainder bound
-  Rgb bound = Rgb::Zero();       ///< Certified: |H(x) - irradiance| <= bound, per channel
-  int gathered_exactly = 0;      ///< Faces gathered exactly (unoccluded or radiating in a gather)
-  int unoccluded = 0;            ///< Of those, faces nothing can hide (Lambert's formula alone)
-  int projected = 0;             ///< Faces projected (hemisphere: selected + possible occluders;
-                                 ///< vertex tracing: the same, summed over its traces)
-  int voxels = 0;                ///< Leaf voxels selected for an exact gather
-  int gathers = 0;               ///< Exact gathers run (0 when nothing can light x)
+  Rgb irradiance =
+      Rgb::Zero();          ///< H(x) estimate [W/m^2]: the exact part plus half the remainder bound
+  Rgb bound = Rgb::Zero();  ///< Certified: |H(x) - irradiance| <= bound, per channel
+  int gathered_exactly = 0;  ///< Faces gathered exactly (unoccluded or radiating in a gather)
+  int unoccluded = 0;        ///< Of those, faces nothing can hide (Lambert's formula alone)
+  int projected = 0;         ///< Faces projected (hemisphere: selected + possible occluders;
+                             ///< vertex tracing: the same, summed over its traces)
+  int voxels = 0;            ///< Leaf voxels selected for an exact gather
+  int gathers = 0;           ///< Exact gathers run (0 when nothing can light x)
 };
 
 /// The octree's items: one per face, with its polygon's normal and its exitance.
@@ -60,7 +61,8 @@ class LocalPass {
  public:
   /// `faces` are typically faces_from_solution (every element radiates its radiosity);
   /// `method` picks the exact gatherer (hemisphere or vertex; Error for Monte Carlo).
-  LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method, const LocalPassSettings& settings = {});
+  LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
+            const LocalPassSettings& settings = {});
 
   /// Irradiance at x for unit normal n, to the given relative tolerance (0: exact, every face
   /// that may be hidden radiating in one gather). Thread-safe.

@@ -10,7 +10,9 @@ namespace rad {
 namespace {
 
 constexpr std::array<std::pair<Method, std::string_view>, 3> kNames{
-    {{Method::hemisphere, "hemisphere"}, {Method::vertex, "vertex"}, {Method::montecarlo, "montecarlo"}}};
+    {{Method::hemisphere, "hemisphere"},
+     {Method::vertex, "vertex"},
+     {Method::montecarlo, "montecarlo"}}};
 
 }  // namespace
 
@@ -44,7 +46,8 @@ std::vector<std::string> exact_method_names() {
 
 bool is_exact(Method method) { return method != Method::montecarlo; }
 
-std::unique_ptr<ExactGatherer> make_exact_gatherer(Method method, const Scene& scene, std::vector<EmittingFace> faces) {
+std::unique_ptr<ExactGatherer> make_exact_gatherer(Method method, const Scene& scene,
+                                                   std::vector<EmittingFace> faces) {
   switch (method) {
     case Method::hemisphere:
       return std::make_unique<HemisphereGatherer>(std::move(faces), scene.tolerance());

@@ -17,7 +17,8 @@ namespace rad {
 enum class Method {
   hemisphere,  ///< exact: projection onto the hemisphere (paper 004 §3; hemisphere/)
   vertex,      ///< exact: vertex tracing with angular spans (paper 001; vertex/)
-  montecarlo,  ///< sampled: cosine-weighted rays into the solution (the baseline; localpass/monte_carlo.h)
+  montecarlo,  ///< sampled: cosine-weighted rays into the solution (the baseline;
+               ///< localpass/monte_carlo.h)
 };
 
 /// "hemisphere", "vertex", "montecarlo".
@@ -32,6 +33,7 @@ std::vector<std::string> exact_method_names();
 bool is_exact(Method method);
 
 /// The exact gatherer of an exact method over `faces`. Throws Error for Monte Carlo.
-std::unique_ptr<ExactGatherer> make_exact_gatherer(Method method, const Scene& scene, std::vector<EmittingFace> faces);
+std::unique_ptr<ExactGatherer> make_exact_gatherer(Method method, const Scene& scene,
+                                                   std::vector<EmittingFace> faces);
 
 }  // namespace rad

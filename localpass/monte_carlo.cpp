@@ -24,7 +24,8 @@ MonteCarloGatherer::MonteCarloGatherer(const Scene& scene, const std::vector<Emi
 MonteCarloGatherer::~MonteCarloGatherer() = default;
 
 Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64_t seed) const {
-  const int strata = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(samples)))));
+  const int strata =
+      std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(samples)))));
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + 1);
   std::uniform_real_distribution<double> jitter(0, 1);
   const PlaneFrame frame(Vec3::Zero(), n);
@@ -33,9 +34,11 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
   for (int i = 0; i < strata; ++i) {
     for (int j = 0; j < strata; ++j) {
       // Malley's method: uniform on the disk (concentric strata in r^2 and phi), lifted.
-      const double r2 = (i + jitter(rng)) / strata, phi = 2 * std::numbers::pi * (j + jitter(rng)) / strata;
+      const double r2 = (i + jitter(rng)) / strata,
+                   phi = 2 * std::numbers::pi * (j + jitter(rng)) / strata;
       const double r = std::sqrt(r2);
-      const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(std::max(0.0, 1 - r2)) * n;
+      const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v +
+                     std::sqrt(std::max(0.0, 1 - r2)) * n;
       const auto hit = caster_->closest_hit({origin, d});
       if (hit && hit->front_facing) sum += exitance_[hit->polygon];
     }

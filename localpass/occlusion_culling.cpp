@@ -11,15 +11,10 @@
 namespace rad {
 namespace {
 
-Eigen::AlignedBox3d box_of(const std::vector<Vec3>& points) {
-  Eigen::AlignedBox3d box;
-  for (const Vec3& p : points) box.extend(p);
-  return box;
-}
-
 /// Whether two convex polygons in one plane (normal n) overlap with positive area: no edge of
 /// either separates them by more than -tolerance (touching along an edge is not overlapping).
-bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n, double tolerance) {
+bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, const Vec3& n,
+                    double tolerance) {
   const auto separated_by_edges_of = [&](const std::vector<Vec3>& p, const std::vector<Vec3>& q) {
     const double orientation = newell_vector(p).dot(n) >= 0 ? 1 : -1;
     for (size_t i = 0; i < p.size(); ++i) {
@@ -27,7 +22,8 @@ bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, cons
       const double norm = out.norm();
       if (!(norm > 0)) continue;
       const double edge = out.dot(p[i]) / norm;
-      const double nearest = std::ranges::min(q | std::views::transform([&](const Vec3& v) { return out.dot(v) / norm; }));
+      const double nearest = std::ranges::min(
+          q | std::views::transform([&](const Vec3& v) { return out.dot(v) / norm; }));
       if (nearest >= edge - tolerance) return true;
     }
     return false;
@@ -37,7 +33,8 @@ bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, cons
 
 }  // namespace
 
-OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces, const Octree& octree)
+OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces,
+                                   const Octree& octree)
     : faces_(faces), octree_(octree) {
   // The gatherers' own tolerance (Scene::tolerance()): the culling is exact only with it.
   const Tolerance tolerance = scene.tolerance();
@@ -50,31 +47,39 @@ OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<Emittin
     data.normal = polygon.normal;
     data.offset = polygon.normal.dot(polygon.vertices.front());
     data.vertices = polygon.vertices;
-    data.box = box_of(polygon.vertices);
+    data.box = bounding_box(polygon.vertices);
   }
   for (size_t f = 0; f < faces_.size(); ++f) {
-    face_boxes_.push_back(box_of(faces_[f].vertices));
+    face_boxes_.push_back(bounding_box(faces_[f].vertices));
   }
 
   // Coplanar polygons that overlap (sort and sweep on the boxes, then in-plane overlap of the
   // convex pieces).
-  const auto pieces = faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero()));
+  const auto pieces =
+      faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero()));
   std::vector<std::vector<int>> pieces_of(scene.polygons.size());
-  for (size_t i = 0; i < pieces.size(); ++i) pieces_of[pieces[i].polygon].push_back(static_cast<int>(i));
+  for (size_t i = 0; i < pieces.size(); ++i)
+    pieces_of[pieces[i].polygon].push_back(static_cast<int>(i));
   std::vector<int> order(scene.polygons.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::ranges::sort(order, [&](int a, int b) { return polygons_[a].box.min().x() < polygons_[b].box.min().x(); });
+  std::ranges::sort(
+      order, [&](int a, int b) { return polygons_[a].box.min().x() < polygons_[b].box.min().x(); });
   for (size_t oi = 0; oi < order.size(); ++oi) {
     PolygonData& a = polygons_[order[oi]];
-    for (size_t oj = oi + 1; oj < order.size() && polygons_[order[oj]].box.min().x() <= a.box.max().x() + pad_; ++oj) {
+    for (size_t oj = oi + 1;
+         oj < order.size() && polygons_[order[oj]].box.min().x() <= a.box.max().x() + pad_; ++oj) {
       PolygonData& b = polygons_[order[oj]];
       if (std::abs(a.normal.dot(b.normal)) < 1 - 1e-12) continue;
-      if (std::ranges::any_of(b.vertices, [&](const Vec3& v) { return std::abs(a.normal.dot(v) - a.offset) > pad_; })) {
+      if (std::ranges::any_of(b.vertices, [&](const Vec3& v) {
+            return std::abs(a.normal.dot(v) - a.offset) > pad_;
+          })) {
         continue;
       }
       bool overlap = false;
       for (const int i : pieces_of[order[oi]]) {
-        for (const int j : pieces_of[order[oj]]) overlap = overlap || convex_overlap(pieces[i].vertices, pieces[j].vertices, a.normal, pad_);
+        for (const int j : pieces_of[order[oj]])
+          overlap =
+              overlap || convex_overlap(pieces[i].vertices, pieces[j].vertices, a.normal, pad_);
       }
       if (!overlap) continue;
       a.coplanar_overlapping.push_back(order[oj]);
@@ -87,7 +92,8 @@ OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<Emittin
   for (int v = static_cast<int>(octree_.voxels().size()) - 1; v >= 0; --v) {
     const Voxel& voxel = octree_.voxels()[v];
     char any = 0;
-    for (const int f : voxel.items) any |= !polygons_[faces_[f].polygon].coplanar_overlapping.empty();
+    for (const int f : voxel.items)
+      any |= !polygons_[faces_[f].polygon].coplanar_overlapping.empty();
     if (!voxel.is_leaf()) {
       for (int c = 0; c < 8; ++c) any |= voxel_has_coplanar_[voxel.first_child + c];
     }
@@ -103,8 +109,9 @@ bool OcclusionCulling::can_light(int face, const Vec3& x, const Vec3& n) const {
   return std::ranges::any_of(f.vertices, [&](const Vec3& v) { return n.dot(v - x) > 0; });
 }
 
-void OcclusionCulling::filter(const std::vector<int>& candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
-                              const std::vector<Vec3>* face, std::vector<int>* out) const {
+void OcclusionCulling::filter(const std::vector<int>& candidates, const Vec3& x,
+                              const Eigen::AlignedBox3d& box, const std::vector<Vec3>* face,
+                              std::vector<int>* out) const {
   out->clear();
   const Vec3 centre = box.center(), half = 0.5 * box.sizes();
   for (const int p : candidates) {
@@ -128,11 +135,12 @@ void OcclusionCulling::filter(const std::vector<int>& candidates, const Vec3& x,
   }
   if (out->empty()) return;
   const Shaft shaft(x, box, pad_);
-  std::erase_if(*out, [&](int p) { return !shaft.may_meet(polygons_[p].vertices, polygons_[p].box); });
+  std::erase_if(*out,
+                [&](int p) { return !shaft.may_meet(polygons_[p].vertices, polygons_[p].box); });
 }
 
-void OcclusionCulling::visit(int v, const std::vector<int>& candidates, const Vec3& x, const Vec3& n,
-                             OcclusionSplit* split) const {
+void OcclusionCulling::visit(int v, const std::vector<int>& candidates, const Vec3& x,
+                             const Vec3& n, OcclusionSplit* split) const {
   const Voxel& voxel = octree_.voxels()[v];
   if (voxel.item_count == 0) return;
   const Vec3 centre = voxel.bounds.center(), half = 0.5 * voxel.bounds.sizes();
@@ -173,7 +181,8 @@ void OcclusionCulling::visit(int v, const std::vector<int>& candidates, const Ve
   split->shadowed.push_back(std::move(group));
 }
 
-void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& group, std::vector<int>* out) const {
+void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& group,
+                                 std::vector<int>* out) const {
   const Shaft shaft(x, group.box, pad_);
   std::vector<int> stack = {0};
   while (!stack.empty()) {
@@ -185,7 +194,8 @@ void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& gro
       continue;
     }
     for (const int g : voxel.items) {
-      if (std::ranges::binary_search(group.blockers, faces_[g].polygon) && shaft.may_meet(faces_[g].vertices, face_boxes_[g])) {
+      if (std::ranges::binary_search(group.blockers, faces_[g].polygon) &&
+          shaft.may_meet(faces_[g].vertices, face_boxes_[g])) {
         out->push_back(g);
       }
     }

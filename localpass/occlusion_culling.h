@@ -19,12 +19,11 @@
 /// polygons hide each other by index in both gatherers, so they are always each other's
 /// occluders. Tolerances: 1e-12 of the scene diagonal for "in the plane" and "separates" (the
 /// gatherers' own), 1e-9 of it as padding on the shafts (on the safe side).
+#include <Eigen/Geometry>
 #include <vector>
 
-#include <Eigen/Geometry>
-
-#include "scene/polygon_faces.h"
 #include "octree/octree.h"
+#include "scene/polygon_faces.h"
 #include "scene/scene.h"
 
 namespace rad {
@@ -46,7 +45,8 @@ struct OcclusionSplit {
 class OcclusionCulling {
  public:
   /// `octree` holds one item per face, in the same order (octree_items).
-  OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces, const Octree& octree);
+  OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces,
+                   const Octree& octree);
 
   OcclusionSplit split(const Vec3& x, const Vec3& n) const;
   /// The same faces with no culling: every one that can light x shadowed, in one group, with
@@ -68,7 +68,8 @@ class OcclusionCulling {
   /// it) from x.
   void filter(const std::vector<int>& candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
               const std::vector<Vec3>* face, std::vector<int>* out) const;
-  void visit(int voxel, const std::vector<int>& candidates, const Vec3& x, const Vec3& n, OcclusionSplit* split) const;
+  void visit(int voxel, const std::vector<int>& candidates, const Vec3& x, const Vec3& n,
+             OcclusionSplit* split) const;
   bool can_light(int face, const Vec3& x, const Vec3& n) const;
 
   const std::vector<EmittingFace>& faces_;

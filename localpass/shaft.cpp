@@ -46,17 +46,18 @@ Shaft::Shaft(const Vec3& x, Eigen::AlignedBox3d box, double pad) : pad_(pad) {
 }
 
 bool Shaft::may_meet(const std::vector<Vec3>& vertices) const {
-  Eigen::AlignedBox3d box;
-  for (const Vec3& v : vertices) box.extend(v);
-  return may_meet(vertices, box);
+  return may_meet(vertices, bounding_box(vertices));
 }
 
-bool Shaft::may_meet(const std::vector<Vec3>& vertices, const Eigen::AlignedBox3d& vertex_box) const {
+bool Shaft::may_meet(const std::vector<Vec3>& vertices,
+                     const Eigen::AlignedBox3d& vertex_box) const {
   if (!hull_box_.intersects(vertex_box)) return false;
   // The cheap test first: every vertex beyond one plane.
   for (int i = 0; i < plane_count_; ++i) {
     const Plane& p = planes_[i];
-    if (std::ranges::all_of(vertices, [&](const Vec3& v) { return p.normal.dot(v) > p.offset + pad_; })) return false;
+    if (std::ranges::all_of(vertices,
+                            [&](const Vec3& v) { return p.normal.dot(v) > p.offset + pad_; }))
+      return false;
   }
   // Clip the polygon by every plane of the shaft (Sutherland-Hodgman): what is left lies in the
   // shaft (and, for a convex polygon, is exactly their intersection). A polygon spanning the
@@ -81,8 +82,8 @@ bool Shaft::may_meet(const std::vector<Vec3>& vertices, const Eigen::AlignedBox3
     size_t kept = 0;
     // Inside is normal . v <= limit: the distance is the negated excess (negation is exact).
     clip_loop(
-        polygon, count, [&](const Vec3& v) { return -(p.normal.dot(v) - limit); }, interpolated_crossing,
-        [&](const Vec3& v, int) { clipped[kept++] = v; });
+        polygon, count, [&](const Vec3& v) { return -(p.normal.dot(v) - limit); },
+        interpolated_crossing, [&](const Vec3& v, int) { clipped[kept++] = v; });
     std::swap(polygon, clipped);
     count = kept;
   }

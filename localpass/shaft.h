@@ -2,10 +2,9 @@
 /// The shaft from a point to a box: their convex hull (Haines and Wallace's shaft culling, with
 /// one end shrunk to the point). Whatever hides any part of the box from x meets it, so a
 /// polygon certainly outside it can be left out of the visibility work for that box.
+#include <Eigen/Geometry>
 #include <array>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "geometry/vec.h"
 

@@ -9,11 +9,7 @@
 namespace rad {
 namespace {
 
-Eigen::AlignedBox3d box_of(const OctreeItem& item) {
-  Eigen::AlignedBox3d box;
-  for (const Vec3& c : item.corners) box.extend(c);
-  return box;
-}
+Eigen::AlignedBox3d box_of(const OctreeItem& item) { return bounding_box(item.corners); }
 
 Vec3 centroid_of(const OctreeItem& item) {
   Vec3 sum = Vec3::Zero();
@@ -32,7 +28,8 @@ bool can_light(const OctreeItem& item, const Vec3& x, const Vec3& n) {
 
 }  // namespace
 
-Octree::Octree(std::vector<OctreeItem> items, const OctreeSettings& settings) : items_(std::move(items)) {
+Octree::Octree(std::vector<OctreeItem> items, const OctreeSettings& settings)
+    : items_(std::move(items)) {
   Voxel root;
   for (const OctreeItem& item : items_) root.cell.extend(box_of(item));
   if (root.cell.isEmpty()) root.cell = Eigen::AlignedBox3d(Vec3::Zero(), Vec3::Zero());
@@ -56,15 +53,18 @@ Octree::Octree(std::vector<OctreeItem> items, const OctreeSettings& settings) : 
   build(0, std::move(all), settings, root_proxy);
 }
 
-void Octree::build(int v, std::vector<int> items, const OctreeSettings& settings, double root_proxy) {
+void Octree::build(int v, std::vector<int> items, const OctreeSettings& settings,
+                   double root_proxy) {
   Voxel& voxel = voxels_[v];
   voxel.item_count = static_cast<int>(items.size());
   for (const int i : items) {
     voxel.bounds.extend(box_of(items_[i]));
     voxel.bmax = voxel.bmax.cwiseMax(items_[i].radiosity);
   }
-  const double proxy = items.empty() ? 0 : voxel.bmax.maxCoeff() * voxel.bounds.sizes().squaredNorm();
-  const bool leaf = static_cast<int>(items.size()) <= settings.min_items || voxel.level >= settings.max_level ||
+  const double proxy =
+      items.empty() ? 0 : voxel.bmax.maxCoeff() * voxel.bounds.sizes().squaredNorm();
+  const bool leaf = static_cast<int>(items.size()) <= settings.min_items ||
+                    voxel.level >= settings.max_level ||
                     proxy <= settings.energy_fraction * root_proxy * std::ldexp(1.0, voxel.level);
   if (leaf) {
     if (!items.empty()) leaves_.push_back(v);
@@ -77,7 +77,8 @@ void Octree::build(int v, std::vector<int> items, const OctreeSettings& settings
   std::array<std::vector<int>, 8> children;
   for (const int i : items) {
     const Vec3 c = centroid_of(items_[i]);
-    const int octant = (c.x() >= centre.x() ? 1 : 0) | (c.y() >= centre.y() ? 2 : 0) | (c.z() >= centre.z() ? 4 : 0);
+    const int octant = (c.x() >= centre.x() ? 1 : 0) | (c.y() >= centre.y() ? 2 : 0) |
+                       (c.z() >= centre.z() ? 4 : 0);
     children[octant].push_back(i);
   }
   const int first = static_cast<int>(voxels_.size());
@@ -85,12 +86,14 @@ void Octree::build(int v, std::vector<int> items, const OctreeSettings& settings
   for (int octant = 0; octant < 8; ++octant) {
     Voxel child;
     child.level = level + 1;
-    const Vec3 lo((octant & 1) ? centre.x() : cell.min().x(), (octant & 2) ? centre.y() : cell.min().y(),
+    const Vec3 lo((octant & 1) ? centre.x() : cell.min().x(),
+                  (octant & 2) ? centre.y() : cell.min().y(),
                   (octant & 4) ? centre.z() : cell.min().z());
     child.cell = Eigen::AlignedBox3d(lo, lo + 0.5 * cell.sizes());
     voxels_.push_back(child);
   }
-  for (int octant = 0; octant < 8; ++octant) build(first + octant, std::move(children[octant]), settings, root_proxy);
+  for (int octant = 0; octant < 8; ++octant)
+    build(first + octant, std::move(children[octant]), settings, root_proxy);
 }
 
 std::vector<int> Octree::items_below(int v) const {
@@ -117,7 +120,8 @@ Rgb Octree::bmax_toward(int v, const Vec3& x, const Vec3& n) const {
     return bmax;
   }
   for (int c = 0; c < 8; ++c) {
-    if (voxels_[voxel.first_child + c].item_count > 0) bmax = bmax.cwiseMax(bmax_toward(voxel.first_child + c, x, n));
+    if (voxels_[voxel.first_child + c].item_count > 0)
+      bmax = bmax.cwiseMax(bmax_toward(voxel.first_child + c, x, n));
   }
   return bmax;
 }

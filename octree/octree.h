@@ -4,9 +4,8 @@
 /// and the view-dependent bounds Bound(x, v) that order the local pass.
 ///
 /// May use: radiosity, scene, geometry.
-#include <vector>
-
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "geometry/vec.h"
 
@@ -39,10 +38,10 @@ struct OctreeSettings {
 };
 
 struct Voxel {
-  Eigen::AlignedBox3d cell;     ///< The octree cell (its children halve it).
-  Eigen::AlignedBox3d bounds;   ///< Box around the items it holds (all its descendants' items).
+  Eigen::AlignedBox3d cell;    ///< The octree cell (its children halve it).
+  Eigen::AlignedBox3d bounds;  ///< Box around the items it holds (all its descendants' items).
   int level = 0;
-  int first_child = -1;  ///< Children first_child .. first_child + 7 (empty ones too); -1: leaf.
+  int first_child = -1;    ///< Children first_child .. first_child + 7 (empty ones too); -1: leaf.
   std::vector<int> items;  ///< Leaves only: indices into the item list.
   int item_count = 0;      ///< Items in this voxel and below.
   Rgb bmax = Rgb::Zero();  ///< Eq. 5: the largest radiosity of any item in it, per channel.

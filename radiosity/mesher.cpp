@@ -43,7 +43,8 @@ void grid_patches(const Polygon& p, int polygon, double size, std::vector<Patch>
   };
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i < nu; ++i) {
-      out.push_back(make_patch(polygon, p.normal, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}));
+      out.push_back(
+          make_patch(polygon, p.normal, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}));
     }
   }
 }
@@ -58,7 +59,8 @@ void triangle_patches(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n
   for (int j = 0; j < k; ++j) {
     for (int i = 0; i + j < k; ++i) {
       out.push_back(make_patch(polygon, normal, {at(i, j), at(i + 1, j), at(i, j + 1)}));
-      if (i + j + 1 < k) out.push_back(make_patch(polygon, normal, {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}));
+      if (i + j + 1 < k)
+        out.push_back(make_patch(polygon, normal, {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}));
     }
   }
 }
@@ -94,10 +96,12 @@ std::vector<Patch> make_patches(const Scene& scene, double patch_size) {
     if (is_convex_quad(p)) {
       grid_patches(p, id, patch_size, patches);
     } else if (p.vertices.size() == 3) {
-      triangle_patches(p.vertices[0], p.vertices[1], p.vertices[2], p.normal, id, patch_size, patches);
+      triangle_patches(p.vertices[0], p.vertices[1], p.vertices[2], p.normal, id, patch_size,
+                       patches);
     } else {
       for (const auto& t : triangulate(project_to_plane(p.vertices, p.normal))) {
-        triangle_patches(p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]], p.normal, id, patch_size, patches);
+        triangle_patches(p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]], p.normal, id,
+                         patch_size, patches);
       }
     }
   }

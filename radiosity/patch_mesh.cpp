@@ -39,7 +39,8 @@ class PointSet {
             const double t = (points_[q] - a).dot(ab) / length2;
             if (t <= 0 || t >= 1) continue;
             if ((a + t * ab - points_[q]).norm() > tolerance_) continue;
-            if ((points_[q] - a).norm() <= tolerance_ || (points_[q] - b).norm() <= tolerance_) continue;
+            if ((points_[q] - a).norm() <= tolerance_ || (points_[q] - b).norm() <= tolerance_)
+              continue;
             found.emplace_back(t, q);
           }
         }
@@ -56,11 +57,13 @@ class PointSet {
 
  private:
   Eigen::Vector3i cell_of(const Vec3& p) const {
-    return {static_cast<int>(std::floor(p.x() / cell_)), static_cast<int>(std::floor(p.y() / cell_)),
+    return {static_cast<int>(std::floor(p.x() / cell_)),
+            static_cast<int>(std::floor(p.y() / cell_)),
             static_cast<int>(std::floor(p.z() / cell_))};
   }
   static uint64_t key(const Eigen::Vector3i& c) {
-    return (static_cast<uint64_t>(c.x() & 0x1FFFFF) << 42) | (static_cast<uint64_t>(c.y() & 0x1FFFFF) << 21) |
+    return (static_cast<uint64_t>(c.x() & 0x1FFFFF) << 42) |
+           (static_cast<uint64_t>(c.y() & 0x1FFFFF) << 21) |
            static_cast<uint64_t>(c.z() & 0x1FFFFF);
   }
   int find(const Vec3& p) const {
@@ -91,19 +94,22 @@ ElementMesh::ElementMesh(const Solution& solution, double tolerance) {
   const std::vector<int> leaves = solution.leaves();
   // Group leaves by polygon, keeping leaf order inside each group.
   std::map<int, std::vector<int>> by_polygon;  // polygon -> positions in `leaves`
-  for (size_t f = 0; f < leaves.size(); ++f) by_polygon[solution.elements[leaves[f]].polygon].push_back(static_cast<int>(f));
+  for (size_t f = 0; f < leaves.size(); ++f)
+    by_polygon[solution.elements[leaves[f]].polygon].push_back(static_cast<int>(f));
 
   std::vector<std::vector<OpenMesh::VertexHandle>> face_handles(leaves.size());
   for (const auto& [polygon, faces] : by_polygon) {
     double smallest = std::numeric_limits<double>::infinity();
     for (const int f : faces) {
       const auto& c = solution.elements[leaves[f]].corners;
-      for (size_t i = 0; i < c.size(); ++i) smallest = std::min(smallest, (c[(i + 1) % c.size()] - c[i]).norm());
+      for (size_t i = 0; i < c.size(); ++i)
+        smallest = std::min(smallest, (c[(i + 1) % c.size()] - c[i]).norm());
     }
     PointSet points(std::max(smallest, 4 * tolerance), tolerance);
     std::vector<std::vector<int>> corner_ids(faces.size());
     for (size_t k = 0; k < faces.size(); ++k) {
-      for (const Vec3& c : solution.elements[leaves[faces[k]]].corners) corner_ids[k].push_back(points.find_or_add(c));
+      for (const Vec3& c : solution.elements[leaves[faces[k]]].corners)
+        corner_ids[k].push_back(points.find_or_add(c));
     }
     std::vector<OpenMesh::VertexHandle> handles;
     for (int i = 0; i < points.size(); ++i) {
@@ -116,7 +122,8 @@ ElementMesh::ElementMesh(const Solution& solution, double tolerance) {
       for (size_t i = 0; i < ids.size(); ++i) {
         face.push_back(handles[ids[i]]);
         const int next = ids[(i + 1) % ids.size()];
-        for (const int t : points.on_segment(points.point(ids[i]), points.point(next))) face.push_back(handles[t]);
+        for (const int t : points.on_segment(points.point(ids[i]), points.point(next)))
+          face.push_back(handles[t]);
       }
       face_handles[faces[k]] = std::move(face);
     }
@@ -143,7 +150,8 @@ std::vector<Vec3> ElementMesh::face_points(int face) const {
   return out;
 }
 
-std::vector<Rgb> ElementMesh::vertex_radiosity(const Solution& solution, const std::vector<Rgb>& face_reflectance,
+std::vector<Rgb> ElementMesh::vertex_radiosity(const Solution& solution,
+                                               const std::vector<Rgb>& face_reflectance,
                                                bool with_ambient) const {
   std::vector<Rgb> sum(mesh_.n_vertices(), Rgb::Zero());
   std::vector<double> weight(mesh_.n_vertices(), 0.0);

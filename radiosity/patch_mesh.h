@@ -40,7 +40,8 @@ class ElementMesh {
 
   /// Gouraud vertex values: per vertex, the area-weighted mean radiosity of the faces around
   /// it (+ rho * ambient when `with_ambient`). Indexed by vertex.
-  std::vector<Rgb> vertex_radiosity(const Solution& solution, const std::vector<Rgb>& face_reflectance,
+  std::vector<Rgb> vertex_radiosity(const Solution& solution,
+                                    const std::vector<Rgb>& face_reflectance,
                                     bool with_ambient) const;
 
  private:

@@ -56,10 +56,10 @@ struct Patch {
 struct Element {
   int patch = -1;
   int polygon = -1;
-  int parent = -1;              ///< Parent element, -1 for the patch's top-level elements.
-  int first_child = -1;         ///< Children are first_child .. first_child + 3; -1 for a leaf.
-  int level = 0;                ///< Refinement level below the initial elements (0 = initial).
-  std::vector<Vec3> corners;    ///< 3 or 4 corners, counter-clockwise from the front.
+  int parent = -1;            ///< Parent element, -1 for the patch's top-level elements.
+  int first_child = -1;       ///< Children are first_child .. first_child + 3; -1 for a leaf.
+  int level = 0;              ///< Refinement level below the initial elements (0 = initial).
+  std::vector<Vec3> corners;  ///< 3 or 4 corners, counter-clockwise from the front.
   Vec3 centroid = Vec3::Zero();
   double area = 0;
   Rgb radiosity = Rgb::Zero();   ///< B = E + rho H [W/m^2]; meaningful on leaves.
@@ -74,8 +74,8 @@ struct Element {
 struct SolveStats {
   int shots = 0;
   int patches = 0;
-  int elements = 0;        ///< Leaves.
-  int refined = 0;         ///< Elements split during the solve.
+  int elements = 0;  ///< Leaves.
+  int refined = 0;   ///< Elements split during the solve.
   double seconds = 0;
   Rgb emitted = Rgb::Zero();
   Rgb absorbed = Rgb::Zero();

@@ -16,7 +16,6 @@ double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (a + t * ab - p).norm();
 }
 
-
 }  // namespace
 
 std::vector<EmittingFace> faces_from_solution(const Scene& scene, const Solution& solution) {
@@ -25,8 +24,9 @@ std::vector<EmittingFace> faces_from_solution(const Scene& scene, const Solution
   for (const int leaf : solution.leaves()) {
     const Element& e = solution.elements[leaf];
     if (e.polygon < 0 || e.polygon >= static_cast<int>(scene.polygons.size())) {
-      throw Error("gather: element " + std::to_string(leaf) + " refers to polygon " + std::to_string(e.polygon) +
-                  " of a scene with " + std::to_string(scene.polygons.size()));
+      throw Error("gather: element " + std::to_string(leaf) + " refers to polygon " +
+                  std::to_string(e.polygon) + " of a scene with " +
+                  std::to_string(scene.polygons.size()));
     }
     const Polygon& p = scene.polygons[e.polygon];
     EmittingFace face{e.polygon, e.corners, e.radiosity, {}, p.normal};
@@ -39,15 +39,17 @@ std::vector<EmittingFace> faces_from_solution(const Scene& scene, const Solution
       for (size_t j = 0; j < p.vertices.size() && !boundary; ++j) {
         const Vec3& pa = p.vertices[j];
         const Vec3& pb = p.vertices[(j + 1) % p.vertices.size()];
-        boundary = segment_distance(a, pa, pb) <= tolerance && segment_distance(b, pa, pb) <= tolerance;
+        boundary =
+            segment_distance(a, pa, pb) <= tolerance && segment_distance(b, pa, pb) <= tolerance;
       }
       face.on_boundary.push_back(boundary);
     }
     orient_counter_clockwise(face);
     faces.push_back(std::move(face));
   }
-  std::stable_sort(faces.begin(), faces.end(),
-                   [](const EmittingFace& a, const EmittingFace& b) { return a.polygon < b.polygon; });
+  std::stable_sort(faces.begin(), faces.end(), [](const EmittingFace& a, const EmittingFace& b) {
+    return a.polygon < b.polygon;
+  });
   return faces;
 }
 

@@ -6,15 +6,14 @@
 #include <algorithm>
 #include <atomic>
 
-
 namespace rad {
 
 namespace {
 
 /// Shared pixel loop: `shade(hit, index, out)` fills pixel `index` of a front-facing hit.
 template <typename Shade>
-IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, const std::function<void(size_t)>& progress,
-                             const Shade& shade) {
+IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera,
+                              const std::function<void(size_t)>& progress, const Shade& shade) {
   const int width = camera.width(), height = camera.height();
   IrradianceImage out;
   out.radiosity = Image(width, height);
@@ -24,42 +23,45 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, con
   out.projected.assign(count, 0);
   out.surface.assign(count, 0);
   std::atomic<size_t> done{0};
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16), [&](const tbb::blocked_range2d<int>& tile) {
-    for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
-      for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
-        const size_t index = static_cast<size_t>(y) * width + x;
-        const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
-        if (!hit || !hit->front_facing) continue;
-        shade(*hit, index, out);
-        out.surface[index] = 1;
-      }
-    }
-    const size_t finished = done += tile.rows().size() * tile.cols().size();
-    if (progress) progress(finished);
-  });
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
+                    [&](const tbb::blocked_range2d<int>& tile) {
+                      for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
+                        for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+                          const size_t index = static_cast<size_t>(y) * width + x;
+                          const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
+                          if (!hit || !hit->front_facing) continue;
+                          shade(*hit, index, out);
+                          out.surface[index] = 1;
+                        }
+                      }
+                      const size_t finished = done += tile.rows().size() * tile.cols().size();
+                      if (progress) progress(finished);
+                    });
   return out;
 }
 
 }  // namespace
 
 IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                                 const LocalPass& pass, double tolerance,
-                                 const std::function<void(size_t)>& progress) {
-  return render_pixels(caster, camera, progress, [&](const Hit& hit, size_t index, IrradianceImage& out) {
-    const Material& material = scene.materials[scene.polygons[hit.polygon].material];
-    const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
-    out.radiosity.pixels[index] = material.emission + material.reflectance.cwiseProduct(r.irradiance);
-    out.bound.pixels[index] = material.reflectance.cwiseProduct(r.bound);
-    out.gathered_exactly[index] = r.gathered_exactly;
-    out.projected[index] = r.projected;
-  });
+                                  const LocalPass& pass, double tolerance,
+                                  const std::function<void(size_t)>& progress) {
+  return render_pixels(
+      caster, camera, progress, [&](const Hit& hit, size_t index, IrradianceImage& out) {
+        const Material& material = scene.materials[scene.polygons[hit.polygon].material];
+        const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
+        out.radiosity.pixels[index] =
+            material.emission + material.reflectance.cwiseProduct(r.irradiance);
+        out.bound.pixels[index] = material.reflectance.cwiseProduct(r.bound);
+        out.gathered_exactly[index] = r.gathered_exactly;
+        out.projected[index] = r.projected;
+      });
 }
 
-IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                                  const MonteCarloGatherer& gatherer, int samples,
-                                  const std::function<void(size_t)>& progress) {
-  IrradianceImage image =
-      render_pixels(caster, camera, progress, [&](const Hit& hit, size_t index, IrradianceImage& out) {
+IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
+                                   const Camera& camera, const MonteCarloGatherer& gatherer,
+                                   int samples, const std::function<void(size_t)>& progress) {
+  IrradianceImage image = render_pixels(
+      caster, camera, progress, [&](const Hit& hit, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const Rgb h = gatherer.gather(hit.point, hit.normal, samples, index);
         out.radiosity.pixels[index] = material.emission + material.reflectance.cwiseProduct(h);

@@ -14,12 +14,13 @@
 namespace rad {
 
 struct IrradianceImage {
-  Image radiosity;                    ///< B = E + rho H [W/m^2] at front-facing primary hits; 0 elsewhere
-  Image bound;                        ///< rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
-  std::vector<int> gathered_exactly;  ///< Per pixel: faces gathered exactly (0 at misses, back sides, Monte Carlo)
-  std::vector<int> projected;         ///< Per pixel: faces projected (hemisphere: with possible occluders)
-  std::vector<char> surface;          ///< Per pixel: 1 where a front-facing surface was gathered
-  int samples_per_pixel = 0;          ///< Monte Carlo: rays per pixel; 0 for the exact local pass
+  Image radiosity;  ///< B = E + rho H [W/m^2] at front-facing primary hits; 0 elsewhere
+  Image bound;      ///< rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
+  std::vector<int> gathered_exactly;  ///< Per pixel: faces gathered exactly (0 at misses, back
+                                      ///< sides, Monte Carlo)
+  std::vector<int> projected;  ///< Per pixel: faces projected (hemisphere: with possible occluders)
+  std::vector<char> surface;   ///< Per pixel: 1 where a front-facing surface was gathered
+  int samples_per_pixel = 0;   ///< Monte Carlo: rays per pixel; 0 for the exact local pass
 };
 
 /// Per-pixel counts and bounds summed up over the pixels where a surface was gathered (the
@@ -44,8 +45,8 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
 
 /// The Monte Carlo baseline: H from `samples` cosine-weighted rays per pixel, seeded by the
 /// pixel index (bitwise the same for any thread count).
-IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster, const Camera& camera,
-                                   const MonteCarloGatherer& gatherer, int samples,
-                                   const std::function<void(size_t)>& progress = {});
+IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
+                                   const Camera& camera, const MonteCarloGatherer& gatherer,
+                                   int samples, const std::function<void(size_t)>& progress = {});
 
 }  // namespace rad

@@ -8,7 +8,8 @@
 
 namespace rad {
 
-Image render_patches(const Scene& scene, const Solution& solution, const Camera& camera, bool with_ambient) {
+Image render_patches(const Scene& scene, const Solution& solution, const Camera& camera,
+                     bool with_ambient) {
   const ElementMesh mesh(solution, scene.tolerance().pad);
 
   // The elements as a scene of their own, so a primary hit names the element directly.
@@ -38,16 +39,17 @@ Image render_patches(const Scene& scene, const Solution& solution, const Camera&
   const RayCaster caster(elements);
 
   Image image(camera.width(), camera.height());
-  tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y) {
-      for (int x = 0; x < image.width; ++x) {
-        const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
-        if (!hit || !hit->front_facing) continue;
-        image.at(x, y) = interpolate_mean_value(face_points[hit->polygon], face_values[hit->polygon],
-                                                hit->normal, hit->point);
-      }
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y) {
+          for (int x = 0; x < image.width; ++x) {
+            const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
+            if (!hit || !hit->front_facing) continue;
+            image.at(x, y) = interpolate_mean_value(
+                face_points[hit->polygon], face_values[hit->polygon], hit->normal, hit->point);
+          }
+        }
+      });
   return image;
 }
 

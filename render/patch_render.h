@@ -13,6 +13,7 @@ namespace rad {
 /// means of the elements around each vertex), + rho * ambient when `with_ambient` (Cohen et al.
 /// 1988). Back sides and misses are black. Radiosity B [W/m^2]; divide by pi for radiance.
 /// Parallel over rows (TBB), independent of the thread count.
-Image render_patches(const Scene& scene, const Solution& solution, const Camera& camera, bool with_ambient);
+Image render_patches(const Scene& scene, const Solution& solution, const Camera& camera,
+                     bool with_ambient);
 
 }  // namespace rad

@@ -1,7 +1,7 @@
 #pragma once
 /// Pinhole camera of the scene file's "camera" block (DESIGN.md §5).
-#include "scene/ray.h"
 #include "geometry/vec.h"
+#include "scene/ray.h"
 
 namespace rad {
 

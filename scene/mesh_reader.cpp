@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <iterator>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "scene/error.h"
@@ -102,8 +102,9 @@ std::vector<std::vector<Vec3>> read_stl_faces(const std::filesystem::path& file,
         char* end = nullptr;
         p[c] = std::strtod(xyz[c].c_str(), &end);
         if (xyz[c].empty() || *end != '\0') {
-          throw InputError(where + ": '" + file.string() + "' facet " + std::to_string(faces.size()) +
-                           ": cannot parse vertex coordinate '" + xyz[c] + "'");
+          throw InputError(where + ": '" + file.string() + "' facet " +
+                           std::to_string(faces.size()) + ": cannot parse vertex coordinate '" +
+                           xyz[c] + "'");
         }
       }
       current.push_back(p);
@@ -127,8 +128,8 @@ std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file
                                                const std::string& where,
                                                std::vector<std::string>& warnings) {
   if (!is_supported_mesh_extension(file)) {
-    throw InputError(where + ": unsupported mesh format '" + file.extension().string() +
-                     "' of '" + file.string() + "' (supported: .obj .ply .off .stl)");
+    throw InputError(where + ": unsupported mesh format '" + file.extension().string() + "' of '" +
+                     file.string() + "' (supported: .obj .ply .off .stl)");
   }
   if (!std::ifstream(file).good()) {
     throw InputError(where + ": cannot open mesh file '" + file.string() + "'");
@@ -160,7 +161,8 @@ std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file
     for (const char* lost : {"Face contains invalid vertex index", "Face has equal vertices",
                              "invalid faces, that could not be added"}) {
       if (line.find(lost) != std::string::npos) {
-        throw InputError(where + ": cannot read every face of '" + file.string() + "' (" + line + ")");
+        throw InputError(where + ": cannot read every face of '" + file.string() + "' (" + line +
+                         ")");
       }
     }
     warnings.push_back(where + ": " + file.filename().string() + ": " + line);

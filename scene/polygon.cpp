@@ -36,7 +36,8 @@ double plane_deviation(const std::vector<Vec3>& vertices, const Vec3& n) {
   return deviation;
 }
 
-PlaneFrame::PlaneFrame(const Vec3& origin_, const Vec3& unit_normal) : origin(origin_), n(unit_normal) {
+PlaneFrame::PlaneFrame(const Vec3& origin_, const Vec3& unit_normal)
+    : origin(origin_), n(unit_normal) {
   // Cross n with the coordinate axis least aligned with it: well conditioned for any n.
   Vec3 axis = Vec3::Zero();
   int least = 0;

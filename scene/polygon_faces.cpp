@@ -32,7 +32,8 @@ void orient_counter_clockwise(EmittingFace& face) {
 
 std::vector<EmittingFace> faces_from_polygons(const Scene& scene, std::vector<Rgb> exitance) {
   if (exitance.empty()) {
-    for (const Polygon& p : scene.polygons) exitance.push_back(scene.materials[p.material].emission);
+    for (const Polygon& p : scene.polygons)
+      exitance.push_back(scene.materials[p.material].emission);
   }
   if (exitance.size() != scene.polygons.size()) {
     throw Error("gather: " + std::to_string(exitance.size()) + " exitances for " +
@@ -44,13 +45,18 @@ std::vector<EmittingFace> faces_from_polygons(const Scene& scene, std::vector<Rg
     const std::vector<Vec2> flat = project_to_plane(p.vertices, p.normal);
     const int polygon = static_cast<int>(i);
     if (is_convex(flat)) {
-      faces.push_back({polygon, p.vertices, exitance[i], std::vector<bool>(p.vertices.size(), true), p.normal});
+      faces.push_back(
+          {polygon, p.vertices, exitance[i], std::vector<bool>(p.vertices.size(), true), p.normal});
       orient_counter_clockwise(faces.back());
       continue;
     }
     const int n = static_cast<int>(p.vertices.size());
     for (const auto& t : triangulate(flat)) {
-      EmittingFace face{polygon, {p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]]}, exitance[i], {}, p.normal};
+      EmittingFace face{polygon,
+                        {p.vertices[t[0]], p.vertices[t[1]], p.vertices[t[2]]},
+                        exitance[i],
+                        {},
+                        p.normal};
       // A triangle edge is a polygon edge when its corners are consecutive polygon vertices.
       for (int e = 0; e < 3; ++e) {
         const int a = t[e], b = t[(e + 1) % 3];

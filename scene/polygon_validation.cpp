@@ -52,7 +52,8 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
       distinct.push_back(v);
     }
   }
-  while (distinct.size() > 1 && (distinct.front() - distinct.back()).norm() <= tol.duplicate_vertex * scale) {
+  while (distinct.size() > 1 &&
+         (distinct.front() - distinct.back()).norm() <= tol.duplicate_vertex * scale) {
     distinct.pop_back();
   }
   if (distinct.size() != vertices.size()) {
@@ -73,9 +74,9 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
   if (deviation > tol.non_planar_limit * scale) {
     std::ostringstream msg;
     msg.precision(3);
-    msg << where << ": is not planar (a vertex lies " << deviation
-        << " from the best-fit plane, " << deviation / scale
-        << " of the polygon's size; the limit is " << tol.non_planar_limit << ")";
+    msg << where << ": is not planar (a vertex lies " << deviation << " from the best-fit plane, "
+        << deviation / scale << " of the polygon's size; the limit is " << tol.non_planar_limit
+        << ")";
     throw InputError(msg.str());
   }
 
@@ -100,7 +101,8 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
   for (const auto& t : triangulate(flat)) {
     std::vector<Vec3> tri{distinct[t[0]], distinct[t[1]], distinct[t[2]]};
     const Vec3 tri_newell = newell_vector(tri);
-    triangles.push_back(finish(std::move(tri), tri_newell, material, object, source_index, index++));
+    triangles.push_back(
+        finish(std::move(tri), tri_newell, material, object, source_index, index++));
   }
   return triangles;
 }

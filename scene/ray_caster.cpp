@@ -24,8 +24,8 @@ struct RayCaster::Impl {
   /// Embree reports errors through a callback; keep the last one for the exception message.
   static void record_device_error(void* user, RTCError code, const char* message) {
     auto* impl = static_cast<Impl*>(user);
-    impl->device_error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
-                         (message ? message : "");
+    impl->device_error =
+        "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
   }
 };
 
@@ -68,7 +68,8 @@ RayCaster::RayCaster(const Scene& scene) : scene_(scene), impl_(std::make_unique
   rtcAttachGeometry(impl_->rtc_scene, geometry);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(impl_->rtc_scene);
-  if (!impl_->device_error.empty()) throw Error("cannot build the ray-casting scene: " + impl_->device_error);
+  if (!impl_->device_error.empty())
+    throw Error("cannot build the ray-casting scene: " + impl_->device_error);
 }
 
 RayCaster::~RayCaster() = default;
@@ -84,7 +85,8 @@ RTCRay to_embree(const Ray& ray, double t_min, double t_max) {
   r.dir_y = static_cast<float>(ray.direction.y());
   r.dir_z = static_cast<float>(ray.direction.z());
   r.tnear = static_cast<float>(t_min);
-  r.tfar = std::isfinite(t_max) ? static_cast<float>(t_max) : std::numeric_limits<float>::infinity();
+  r.tfar =
+      std::isfinite(t_max) ? static_cast<float>(t_max) : std::numeric_limits<float>::infinity();
   r.mask = ~0u;
   r.time = 0;
   r.flags = 0;

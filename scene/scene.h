@@ -20,10 +20,10 @@ namespace rad {
 
 /// One entry of the scene file's "objects" list, kept for messages and statistics.
 struct SceneObject {
-  std::string name;        ///< "name" from the file, or empty.
-  std::string mesh;        ///< Mesh path as written, or empty for inline polygons.
-  int material = -1;       ///< Index into Scene::materials.
-  int first_polygon = 0;   ///< Its polygons are [first_polygon, first_polygon + polygon_count).
+  std::string name;       ///< "name" from the file, or empty.
+  std::string mesh;       ///< Mesh path as written, or empty for inline polygons.
+  int material = -1;      ///< Index into Scene::materials.
+  int first_polygon = 0;  ///< Its polygons are [first_polygon, first_polygon + polygon_count).
   int polygon_count = 0;
 };
 
@@ -38,12 +38,12 @@ struct Bounds {
 /// A loaded, validated scene: every polygon is planar, simple, of non-zero area, with finite
 /// coordinates and a valid material.
 struct Scene {
-  std::filesystem::path path;           ///< The scene file it came from (empty if built in code).
+  std::filesystem::path path;  ///< The scene file it came from (empty if built in code).
   std::vector<Material> materials;
   std::vector<SceneObject> objects;
   std::vector<Polygon> polygons;
   std::optional<CameraSpec> camera;
-  std::vector<std::string> warnings;    ///< Things loading fixed or noticed, one line each.
+  std::vector<std::string> warnings;  ///< Things loading fixed or noticed, one line each.
 
   /// "objects[2] \"tall block\" polygon 5" (plus " triangle 1" for a split polygon).
   std::string describe_polygon(int polygon) const;

@@ -96,7 +96,8 @@ class Reader {
     if (j.is_string()) {
       const std::string s = j.get<std::string>();
       if (s.rfind(kNonFinitePrefix, 0) == 0) {
-        fail(where, "is not a finite number (" + s.substr(std::string(kNonFinitePrefix).size()) + ")");
+        fail(where,
+             "is not a finite number (" + s.substr(std::string(kNonFinitePrefix).size()) + ")");
       }
     }
     if (!j.is_number()) fail(where, "expected a number, got " + type_name(j));
@@ -204,7 +205,8 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
     std::string what = e.what();
     const size_t colon = what.find("parse error");
     what = colon == std::string::npos ? what : what.substr(colon);
-    throw InputError(file.string() + ":" + line_column(json_text, e.byte) + ": invalid JSON: " + what);
+    throw InputError(file.string() + ":" + line_column(json_text, e.byte) +
+                     ": invalid JSON: " + what);
   } catch (const Json::exception& e) {
     throw InputError(file.string() + ": invalid JSON: " + std::string(e.what()));
   }
@@ -274,8 +276,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
     }
     for (size_t f = 0; f < faces.size(); ++f) {
       const int index = static_cast<int>(f);
-      for (Polygon& p : make_polygons(std::move(faces[f]), in.at(where + element + std::to_string(f)),
-                                      object.material, object_id, index, scene.warnings)) {
+      for (Polygon& p :
+           make_polygons(std::move(faces[f]), in.at(where + element + std::to_string(f)),
+                         object.material, object_id, index, scene.warnings)) {
         scene.polygons.push_back(std::move(p));
       }
     }

@@ -9,6 +9,7 @@ packages=(
   libvtk9-dev libopenexr-dev python3-imath
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   xvfb xauth
+  clang-format python3
 )
 
 missing=()

@@ -8,9 +8,9 @@
 namespace rad::test {
 
 struct BadSceneCase {
-  std::string file;      ///< under tests/data/bad/
-  std::string element;   ///< the element the message must name
-  std::string problem;   ///< the words describing the problem
+  std::string file;     ///< under tests/data/bad/
+  std::string element;  ///< the element the message must name
+  std::string problem;  ///< the words describing the problem
 };
 
 inline const std::vector<BadSceneCase>& bad_scene_cases() {
@@ -21,7 +21,8 @@ inline const std::vector<BadSceneCase>& bad_scene_cases() {
       {"reflectance_2.json", "materials.\"white\"", "reflectance[1] = 2 is outside [0, 1)"},
       {"negative_emission.json", "materials.\"lamp\"", "emission[1] = -1 is negative"},
       {"nan_coordinate.json", "objects[0] polygon 1 vertex 2[0]", "not a finite number (NaN)"},
-      {"infinite_coordinate.json", "objects[0] polygon 0 vertex 1[0]", "not a finite number (Infinity)"},
+      {"infinite_coordinate.json", "objects[0] polygon 0 vertex 1[0]",
+       "not a finite number (Infinity)"},
       {"nan_in_stl.json", "objects[0] (nan.stl) face 1", "vertex 2 is not finite"},
       {"nan_in_mesh.json", "objects[0] (nan.off)", "cannot read every face"},
       {"two_vertices.json", "objects[0] polygon 2", "has 2 vertices"},

@@ -29,13 +29,17 @@ struct HowellCase {
   double F;
 };
 /// B-3: element at the origin with normal +z, rectangle z = c, x in [0, a], y in [0, b].
-inline constexpr HowellCase kHowellB3[] = {{1, 1, 1, 0.138531605994893}, {2, 3, 1, 0.217575206107758},
-                                           {0.5, 4, 2, 0.058114170266747}, {10, 10, 1, 0.247971408295310},
+inline constexpr HowellCase kHowellB3[] = {{1, 1, 1, 0.138531605994893},
+                                           {2, 3, 1, 0.217575206107758},
+                                           {0.5, 4, 2, 0.058114170266747},
+                                           {10, 10, 1, 0.247971408295310},
                                            {1, 2, 5, 0.022519707332294}};
 /// Perpendicular: element at the origin with normal +z, rectangle in the plane y = s,
 /// x in [0, w], z in [0, h].
-inline constexpr HowellCase kHowellPerpendicular[] = {{1, 1, 1, 0.055734197002554}, {2, 3, 1, 0.147825402362980},
-                                                      {3, 1, 2, 0.023989639422154}, {0.5, 4, 2, 0.031064728833287},
+inline constexpr HowellCase kHowellPerpendicular[] = {{1, 1, 1, 0.055734197002554},
+                                                      {2, 3, 1, 0.147825402362980},
+                                                      {3, 1, 2, 0.023989639422154},
+                                                      {0.5, 4, 2, 0.031064728833287},
                                                       {10, 10, 1, 0.221738670869958}};
 
 }  // namespace rad::test

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "radiosity/solution_faces.h"
-#include "scene/polygon_faces.h"
 #include "radiosity/solver.h"
+#include "scene/polygon_faces.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 

@@ -61,7 +61,8 @@ class RandomSceneMaker {
       }
     } else {
       const double s = size, t = size * uniform(0.3, 0.7);
-      for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-s, -s}, {s, -s}, {s, -s + t}, {-s + t, -s + t}, {-s + t, s}, {-s, s}}) {
+      for (const auto& [a, b] : std::vector<std::pair<double, double>>{
+               {-s, -s}, {s, -s}, {s, -s + t}, {-s + t, -s + t}, {-s + t, s}, {-s, s}}) {
         out.push_back(c + a * u + b * v);
       }
     }
@@ -73,7 +74,9 @@ class RandomSceneMaker {
     SceneBuilder b;
     std::vector<int> materials;
     materials.push_back(b.material("grey", Rgb::Constant(0.5), Rgb::Zero()));
-    for (int i = 0; i < 3; ++i) materials.push_back(b.material("lamp" + std::to_string(i), Rgb::Zero(), Rgb(uniform(0.2, 2), uniform(0.2, 2), uniform(0.2, 2))));
+    for (int i = 0; i < 3; ++i)
+      materials.push_back(b.material("lamp" + std::to_string(i), Rgb::Zero(),
+                                     Rgb(uniform(0.2, 2), uniform(0.2, 2), uniform(0.2, 2))));
     b.rectangle(-2, 2, -2, 2, 0, false, materials[0]);
     const int count = integer(2, 7);
     bool any_emitter = false;
@@ -81,15 +84,18 @@ class RandomSceneMaker {
       const bool emitter = integer(0, 2) == 0 || (i == count - 1 && !any_emitter);
       any_emitter = any_emitter || emitter;
       const Vec3 c(uniform(-1, 1), uniform(-1, 1), uniform(0.1, 1.5));
-      b.polygon(polygon(c, unit(), uniform(0.1, 0.8)), emitter ? materials[integer(1, 3)] : materials[0]);
+      b.polygon(polygon(c, unit(), uniform(0.1, 0.8)),
+                emitter ? materials[integer(1, 3)] : materials[0]);
     }
     RandomScene out{b.scene(), {}};
-    for (int i = 0; i < 4; ++i) out.sites.push_back({Vec3(uniform(-1.5, 1.5), uniform(-1.5, 1.5), 0), Vec3::UnitZ()});
+    for (int i = 0; i < 4; ++i)
+      out.sites.push_back({Vec3(uniform(-1.5, 1.5), uniform(-1.5, 1.5), 0), Vec3::UnitZ()});
     // Points on the polygons themselves, on their front side, facing out.
     for (size_t p = 1; p < out.scene.polygons.size() && out.sites.size() < 6; ++p) {
       const Polygon& poly = out.scene.polygons[p];
       const double w0 = uniform(0, 1), w1 = uniform(0, 1 - w0);
-      const Vec3 x = poly.vertices[0] + w0 * (poly.vertices[1] - poly.vertices[0]) + w1 * (poly.vertices[2] - poly.vertices[0]);
+      const Vec3 x = poly.vertices[0] + w0 * (poly.vertices[1] - poly.vertices[0]) +
+                     w1 * (poly.vertices[2] - poly.vertices[0]);
       out.sites.push_back({x, poly.normal});
     }
     return out;
@@ -98,11 +104,11 @@ class RandomSceneMaker {
   /// Families built to be conjunctive for vertex tracing, seen from the origin (normal +z) where
   /// the coincidences are exact up to rounding (plus two more floor points):
   enum class Conjunction {
-    three_edges,         ///< three edges at different depths through one apparent point
-    vertex_behind,       ///< polygon vertices exactly behind one another
-    collinear_edges,     ///< edges on one 3D line, and edges in one plane through the origin
-    coplanar,            ///< coplanar polygons, overlapping and adjacent
-    vertex_on_edge,      ///< a vertex on another polygon's edge, in 3D and in projection
+    three_edges,      ///< three edges at different depths through one apparent point
+    vertex_behind,    ///< polygon vertices exactly behind one another
+    collinear_edges,  ///< edges on one 3D line, and edges in one plane through the origin
+    coplanar,         ///< coplanar polygons, overlapping and adjacent
+    vertex_on_edge,   ///< a vertex on another polygon's edge, in 3D and in projection
   };
   static constexpr int kConjunctions = 5;
 
@@ -110,8 +116,12 @@ class RandomSceneMaker {
     SceneBuilder b;
     const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
     std::vector<int> lamps;
-    for (int i = 0; i < 3; ++i) lamps.push_back(b.material("lamp" + std::to_string(i), Rgb::Zero(), Rgb(uniform(0.2, 2), uniform(0.2, 2), uniform(0.2, 2))));
-    const auto material = [&](int i) { return i == 0 || integer(0, 1) == 0 ? lamps[integer(0, 2)] : grey; };
+    for (int i = 0; i < 3; ++i)
+      lamps.push_back(b.material("lamp" + std::to_string(i), Rgb::Zero(),
+                                 Rgb(uniform(0.2, 2), uniform(0.2, 2), uniform(0.2, 2))));
+    const auto material = [&](int i) {
+      return i == 0 || integer(0, 1) == 0 ? lamps[integer(0, 2)] : grey;
+    };
     b.rectangle(-3, 3, -3, 3, -0.01, false, grey);
     // The shared apparent point's direction, well above the horizon.
     Vec3 w;
@@ -119,13 +129,17 @@ class RandomSceneMaker {
     while (w.z() < 0.3);
     const auto triangle_with_edge_through = [&](const Vec3& p, int m) {
       const Vec3 n = unit(), e = perpendicular(n), f = n.cross(e);
-      b.polygon({p - uniform(0.1, 0.5) * e, p + uniform(0.1, 0.5) * e, p + uniform(-0.3, 0.3) * e + uniform(0.1, 0.5) * f}, m);
+      b.polygon({p - uniform(0.1, 0.5) * e, p + uniform(0.1, 0.5) * e,
+                 p + uniform(-0.3, 0.3) * e + uniform(0.1, 0.5) * f},
+                m);
     };
     const auto triangle_with_vertex_at = [&](const Vec3& p, int m) {
       const Vec3 n = unit(), e = perpendicular(n), f = n.cross(e);
       const double a = uniform(0, 2 * std::numbers::pi), span = uniform(0.3, 2.5);
       const double r1 = uniform(0.1, 0.5), r2 = uniform(0.1, 0.5);
-      b.polygon({p, p + r1 * (std::cos(a) * e + std::sin(a) * f), p + r2 * (std::cos(a + span) * e + std::sin(a + span) * f)}, m);
+      b.polygon({p, p + r1 * (std::cos(a) * e + std::sin(a) * f),
+                 p + r2 * (std::cos(a + span) * e + std::sin(a + span) * f)},
+                m);
     };
     switch (kind) {
       case Conjunction::three_edges:
@@ -142,8 +156,11 @@ class RandomSceneMaker {
         const Vec3 side = perpendicular(dir);
         b.polygon({p, q, p + 0.5 * (q - p) + uniform(0.2, 0.5) * side}, material(0));
         const Vec3 side2 = (side + uniform(0.3, 1.0) * dir.cross(side)).normalized();
-        b.polygon({p + 0.3 * (q - p), p + 1.4 * (q - p), p + 0.8 * (q - p) - uniform(0.2, 0.5) * side2}, material(1));
-        // ...and two polygons whose edges lie in one plane through the origin (collinear seen from it).
+        b.polygon(
+            {p + 0.3 * (q - p), p + 1.4 * (q - p), p + 0.8 * (q - p) - uniform(0.2, 0.5) * side2},
+            material(1));
+        // ...and two polygons whose edges lie in one plane through the origin (collinear seen from
+        // it).
         const Vec3 a = uniform(0.5, 1.5) * w, c = a + uniform(0.2, 0.6) * perpendicular(w);
         const double s1 = uniform(0.5, 0.9), s2 = uniform(1.1, 1.6);
         triangle_with_vertex_at(a, material(2));
@@ -156,12 +173,15 @@ class RandomSceneMaker {
         const Vec3 u = perpendicular(n), v = n.cross(u);
         const double s = uniform(0.2, 0.5);
         // Overlapping: the lower index shows in both methods.
-        b.polygon({c - s * u - s * v, c + s * u - s * v, c + s * u + s * v, c - s * u + s * v}, material(0));
+        b.polygon({c - s * u - s * v, c + s * u - s * v, c + s * u + s * v, c - s * u + s * v},
+                  material(0));
         const Vec3 c2 = c + uniform(-s, s) * u + uniform(-s, s) * v;
-        b.polygon({c2 - s * u - s * v, c2 + s * u - s * v, c2 + s * u + s * v, c2 - s * u + s * v}, material(1));
+        b.polygon({c2 - s * u - s * v, c2 + s * u - s * v, c2 + s * u + s * v, c2 - s * u + s * v},
+                  material(1));
         // Adjacent, sharing part of an edge (a T-junction across polygons).
         const Vec3 c3 = c + 2 * s * u + uniform(-0.5, 0.5) * s * v;
-        b.polygon({c3 - s * u - s * v, c3 + s * u - s * v, c3 + s * u + s * v, c3 - s * u + s * v}, material(2));
+        b.polygon({c3 - s * u - s * v, c3 + s * u - s * v, c3 + s * u + s * v, c3 - s * u + s * v},
+                  material(2));
         break;
       }
       case Conjunction::vertex_on_edge: {
@@ -179,7 +199,8 @@ class RandomSceneMaker {
       }
     }
     RandomScene out{b.scene(), {{Vec3::Zero(), Vec3::UnitZ()}}};
-    for (int i = 0; i < 2; ++i) out.sites.push_back({Vec3(uniform(-1, 1), uniform(-1, 1), 0), Vec3::UnitZ()});
+    for (int i = 0; i < 2; ++i)
+      out.sites.push_back({Vec3(uniform(-1, 1), uniform(-1, 1), 0), Vec3::UnitZ()});
     return out;
   }
 

@@ -20,14 +20,17 @@ class SceneBuilder {
     const int object = static_cast<int>(scene_.objects.size());
     std::vector<std::string> warnings;
     const int first = static_cast<int>(scene_.polygons.size());
-    for (Polygon& p : make_polygons(std::move(vertices), "test polygon", material, object, 0, warnings)) {
+    for (Polygon& p :
+         make_polygons(std::move(vertices), "test polygon", material, object, 0, warnings)) {
       scene_.polygons.push_back(std::move(p));
     }
-    scene_.objects.push_back(SceneObject{"", "", material, first, static_cast<int>(scene_.polygons.size()) - first});
+    scene_.objects.push_back(
+        SceneObject{"", "", material, first, static_cast<int>(scene_.polygons.size()) - first});
     return first;
   }
   /// An axis-aligned rectangle [x0, x1] x [y0, y1] at height z, front facing -z (down) or +z.
-  int rectangle(double x0, double x1, double y0, double y1, double z, bool facing_down, int material) {
+  int rectangle(double x0, double x1, double y0, double y1, double z, bool facing_down,
+                int material) {
     if (facing_down) return polygon({{x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}}, material);
     return polygon({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, material);
   }

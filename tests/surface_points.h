@@ -20,7 +20,8 @@ inline Vec3 random_surface_point(const Polygon& p, std::mt19937_64& rng, double 
   const size_t t = 1 + static_cast<size_t>(u(rng) * (k - 2)) % (k - 2);
   double a = u(rng), b = u(rng);
   if (a + b > 1) a = 1 - a, b = 1 - b;
-  return p.vertices[0] + a * (p.vertices[t] - p.vertices[0]) + b * (p.vertices[t + 1] - p.vertices[0]);
+  return p.vertices[0] + a * (p.vertices[t] - p.vertices[0]) +
+         b * (p.vertices[t + 1] - p.vertices[0]);
 }
 
 }  // namespace rad::test

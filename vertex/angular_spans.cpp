@@ -26,26 +26,27 @@ struct Boundary {
   Vec3 plane;    ///< Through x, containing the boundary
 };
 
-
 /// The equal-depth plane of two polygons (unit), or zero when they are coplanar.
 Vec3 equal_depth_plane(const SpanEntry& a, const SpanEntry& b) {
   const Vec3 m = a.offset * b.normal - b.offset * a.normal;
   const double length = m.norm();
-  return length > 1e-12 * (std::abs(a.offset) + std::abs(b.offset)) ? Vec3(m / length) : Vec3::Zero();
+  return length > 1e-12 * (std::abs(a.offset) + std::abs(b.offset)) ? Vec3(m / length)
+                                                                    : Vec3::Zero();
 }
 
 /// k . (q, 1): where q lies relative to the image line of plane k (times |k_xy|), zero when
 /// within its rounding (a line through q up to rounding is taken through q).
 double line_value(const Vec3& k, const Vec2& q) {
   const double f = k.x() * q.x() + k.y() * q.y() + k.z();
-  const double rounding = 8e-16 * (std::abs(k.x() * q.x()) + std::abs(k.y() * q.y()) + std::abs(k.z()));
+  const double rounding =
+      8e-16 * (std::abs(k.x() * q.x()) + std::abs(k.y() * q.y()) + std::abs(k.z()));
   return std::abs(f) <= rounding ? 0.0 : f;
 }
 
 /// Whether a is nearer than b in the sector whose middle meets the circle of radius `circle`
 /// around q in image direction w.
-bool nearer(const SpanEntry& a, const SpanEntry& b, const Vec3& d, const Vec2& q, const Vec2& w, double radius,
-            double circle) {
+bool nearer(const SpanEntry& a, const SpanEntry& b, const Vec3& d, const Vec2& q, const Vec2& w,
+            double radius, double circle) {
   const Vec3 m = equal_depth_plane(a, b);
   if (m == Vec3::Zero()) return a.order < b.order;  // equally deep everywhere
   // Depth t = c / (n . d') > 0, so sign(n . d') = sign(c): a is nearer where
@@ -79,7 +80,8 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
   const auto angle_of = [&](const Vec3& k, double sense) {
     const Vec2 w = sense * Vec2(k.y(), -k.x());
     const Vec2 offset = -line_value(k, q) * k.head<2>() / k.head<2>().squaredNorm();
-    const Vec2 exit = offset + std::sqrt(std::max(circle * circle - offset.squaredNorm(), 0.0)) * w.normalized();
+    const Vec2 exit =
+        offset + std::sqrt(std::max(circle * circle - offset.squaredNorm(), 0.0)) * w.normalized();
     return std::atan2(exit.y(), exit.x());
   };
 
@@ -108,10 +110,12 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
     }
   }
   if (boundaries.empty()) return Rgb::Zero();
-  std::sort(boundaries.begin(), boundaries.end(), [](const Boundary& a, const Boundary& b) { return a.angle < b.angle; });
+  std::sort(boundaries.begin(), boundaries.end(),
+            [](const Boundary& a, const Boundary& b) { return a.angle < b.angle; });
   const size_t count = boundaries.size();
   const auto gap_after = [&](size_t b) {
-    return b + 1 < count ? boundaries[b + 1].angle - boundaries[b].angle : boundaries[0].angle + kTwoPi - boundaries[b].angle;
+    return b + 1 < count ? boundaries[b + 1].angle - boundaries[b].angle
+                         : boundaries[0].angle + kTwoPi - boundaries[b].angle;
   };
 
   // The emission seen in the sector counter-clockwise after each boundary (up to the next one).
@@ -124,7 +128,8 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
     int front = -1;
     for (size_t i = 0; i < entries.size(); ++i) {
       if (!(ccw_angle(start[i], mid) < width[i])) continue;
-      if (front < 0 || nearer(entries[i], entries[front], d, q, w, radius, circle)) front = static_cast<int>(i);
+      if (front < 0 || nearer(entries[i], entries[front], d, q, w, radius, circle))
+        front = static_cast<int>(i);
     }
     if (front >= 0) seen[b] = entries[front].exitance;
   }

@@ -25,11 +25,11 @@ namespace rad {
 struct SpanEntry {
   enum class Kind { full, edge, vertex };
   Kind kind = Kind::full;
-  Vec3 start = Vec3::Zero();   ///< Plane of the boundary where the polygon begins (edge, vertex).
-  Vec3 end = Vec3::Zero();     ///< Plane where it ends (vertex spans; an edge span ends on `start`).
+  Vec3 start = Vec3::Zero();  ///< Plane of the boundary where the polygon begins (edge, vertex).
+  Vec3 end = Vec3::Zero();    ///< Plane where it ends (vertex spans; an edge span ends on `start`).
   Vec3 normal = Vec3::Zero();  ///< Unit normal of the polygon's plane (x at the origin)...
   double offset = 0;           ///< ...and normal . p on it (never 0: edge-on planes are dropped).
-  int order = 0;               ///< Coplanar overlap: the lower order shows (as in hemi::VisibleSurface).
+  int order = 0;  ///< Coplanar overlap: the lower order shows (as in hemi::VisibleSurface).
   Rgb exitance = Rgb::Zero();  ///< M: what it radiates towards x (0 when x sees its back).
 };
 

@@ -34,8 +34,9 @@ void ImageBoxTree::build(int index, int first, int count, int depth) {
   int axis = 0;
   centres.sizes().maxCoeff(&axis);
   const int half = count / 2;
-  std::nth_element(items_.begin() + first, items_.begin() + first + half, items_.begin() + first + count,
-                   [&](int a, int b) { return boxes_[a].center()[axis] < boxes_[b].center()[axis]; });
+  std::nth_element(
+      items_.begin() + first, items_.begin() + first + half, items_.begin() + first + count,
+      [&](int a, int b) { return boxes_[a].center()[axis] < boxes_[b].center()[axis]; });
   const int left = static_cast<int>(nodes_.size());
   nodes_[index].left = left;
   nodes_.emplace_back();

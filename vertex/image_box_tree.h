@@ -47,7 +47,8 @@ class ImageBoxTree {
       if (a_leaf && b_leaf) {
         for (int p = a.first; p < a.first + a.count; ++p) {
           for (int q = b.first; q < b.first + b.count; ++q) {
-            if (boxes_[items_[p]].intersects(other.boxes_[other.items_[q]])) visit(items_[p], other.items_[q]);
+            if (boxes_[items_[p]].intersects(other.boxes_[other.items_[q]]))
+              visit(items_[p], other.items_[q]);
           }
         }
       } else if (b_leaf || (!a_leaf && a.box.volume() >= b.box.volume())) {

@@ -21,7 +21,8 @@ constexpr double kImageBound = 1e8;
 
 /// Clips a convex loop with per-edge flags to k . p >= 0 (geometry/clip.h, crossings by
 /// cut_point); the new edge along the cut gets `cut_flag`.
-void clip_to_plane(std::vector<Vec3>& loop, std::vector<char>& flags, const Vec3& k, char cut_flag) {
+void clip_to_plane(std::vector<Vec3>& loop, std::vector<char>& flags, const Vec3& k,
+                   char cut_flag) {
   std::vector<Vec3> out;
   std::vector<char> out_flags;
   clip_loop(
@@ -45,7 +46,8 @@ bool arcs_cross(const Feature& p, const Feature& q, Vec3* where) {
   if (c.z() < 0) c = -c;
   if (!(c.z() > 0)) return false;  // on the horizon's great circle: outside the square
   const Vec2 image = image_of(c);
-  if (!(relative_segment_distance(p.qa, p.qb, image) < kNape && relative_segment_distance(q.qa, q.qb, image) < kNape)) {
+  if (!(relative_segment_distance(p.qa, p.qb, image) < kNape &&
+        relative_segment_distance(q.qa, q.qb, image) < kNape)) {
     return false;
   }
   *where = c;
@@ -109,8 +111,9 @@ uint64_t pair_key(int a, int b) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
 }
 
-void add_faces_in_square(LocalPicture& picture, const LocalFrame& frame, const std::vector<EmittingFace>& faces,
-                         double in_plane, const std::vector<char>* emitting, const std::vector<int>* subset) {
+void add_faces_in_square(LocalPicture& picture, const LocalFrame& frame,
+                         const std::vector<EmittingFace>& faces, double in_plane,
+                         const std::vector<char>* emitting, const std::vector<int>* subset) {
   const size_t count = subset ? subset->size() : faces.size();
   for (size_t index = 0; index < count; ++index) {
     const size_t i = subset ? static_cast<size_t>((*subset)[index]) : index;
@@ -165,25 +168,28 @@ void add_faces_in_square(LocalPicture& picture, const LocalFrame& frame, const s
     }
     lf.silhouette = std::move(flags);
     lf.box = padded_box(lf.image, kNape);
-    if (lf.exitance != Rgb::Zero()) picture.emitter_boxes.push_back(padded_box(lf.image, kCullMargin));
+    if (lf.exitance != Rgb::Zero())
+      picture.emitter_boxes.push_back(padded_box(lf.image, kCullMargin));
     picture.faces.push_back(std::move(lf));
   }
 }
 
-void add_features(LocalPicture& picture, const LocalFrame& frame, const std::vector<EmittingFace>& faces,
-                  const std::vector<Segment>& segments, const std::vector<char>* polygon_present,
-                  const EmitterCulling& culling) {
+void add_features(LocalPicture& picture, const LocalFrame& frame,
+                  const std::vector<EmittingFace>& faces, const std::vector<Segment>& segments,
+                  const std::vector<char>* polygon_present, const EmitterCulling& culling) {
   for (LocalFace& f : picture.faces) {
     f.first_feature = static_cast<int>(picture.features.size());
     const size_t m = f.dirs.size();
     for (size_t j = 0; j < m; ++j) {
-      picture.features.push_back({f.dirs[j], f.dirs[(j + 1) % m], f.k[j], f.image[j], f.image[(j + 1) % m],
-                                  faces[f.face].polygon, f.silhouette[j] != 0});
+      picture.features.push_back({f.dirs[j], f.dirs[(j + 1) % m], f.k[j], f.image[j],
+                                  f.image[(j + 1) % m], faces[f.face].polygon,
+                                  f.silhouette[j] != 0});
       picture.feature_boxes.push_back(padded_box({f.image[j], f.image[(j + 1) % m]}, kNape));
     }
   }
   for (const Segment& s : segments) {
-    if (polygon_present && !((*polygon_present)[s.polygon_a] && (*polygon_present)[s.polygon_b])) continue;
+    if (polygon_present && !((*polygon_present)[s.polygon_a] && (*polygon_present)[s.polygon_b]))
+      continue;
     Vec3 a = frame.local(s.a), b = frame.local(s.b);
     bool inside = true;
     for (const Vec3& plane : square_planes()) {

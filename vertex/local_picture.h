@@ -51,9 +51,10 @@ struct LocalFace {
   Vec3 normal;
   double offset = 0;
   Rgb exitance = Rgb::Zero();
-  std::vector<Vec3> dirs;        ///< Unit vertex directions...
-  std::vector<Vec2> image;       ///< ...and their images q = (d_x, d_y) / d_z.
-  std::vector<Vec3> k;           ///< Edge i (dirs i -> i+1): unit normal of its plane through x (0: degenerate).
+  std::vector<Vec3> dirs;   ///< Unit vertex directions...
+  std::vector<Vec2> image;  ///< ...and their images q = (d_x, d_y) / d_z.
+  std::vector<Vec3>
+      k;  ///< Edge i (dirs i -> i+1): unit normal of its plane through x (0: degenerate).
   std::vector<char> silhouette;  ///< Edge flag (kCutBySquare).
   int first_feature = 0;         ///< Edge i is feature first_feature + i.
   int first_vertex = 0;          ///< Vertex i is candidate vertex_candidate[first_vertex + i].
@@ -105,8 +106,9 @@ uint64_t pair_key(int a, int b);
 /// Step 1: the faces with solid angle inside the image square, in local coordinates, and the
 /// image boxes of those that radiate toward x. `emitting` (may be null): only flagged faces
 /// radiate. `subset` (may be null): only these faces exist.
-void add_faces_in_square(LocalPicture& picture, const LocalFrame& frame, const std::vector<EmittingFace>& faces,
-                         double in_plane, const std::vector<char>* emitting, const std::vector<int>* subset);
+void add_faces_in_square(LocalPicture& picture, const LocalFrame& frame,
+                         const std::vector<EmittingFace>& faces, double in_plane,
+                         const std::vector<char>* emitting, const std::vector<int>* subset);
 
 /// Only what may show in front of an emitter's image box matters (001 §4.1), box by box: the
 /// emitters of a local-pass batch lie in many directions, and one box around them all would
@@ -120,9 +122,9 @@ struct EmitterCulling {
 /// Step 2: the features, face edges then the interpenetration segments inside the square (the
 /// segments' ends are intrinsic candidates). `polygon_present` (may be null): a segment counts
 /// only when both its polygons have a face in the picture's subset.
-void add_features(LocalPicture& picture, const LocalFrame& frame, const std::vector<EmittingFace>& faces,
-                  const std::vector<Segment>& segments, const std::vector<char>* polygon_present,
-                  const EmitterCulling& culling);
+void add_features(LocalPicture& picture, const LocalFrame& frame,
+                  const std::vector<EmittingFace>& faces, const std::vector<Segment>& segments,
+                  const std::vector<char>* polygon_present, const EmitterCulling& culling);
 
 /// Step 3: every face vertex, and every apparent crossing of a silhouette with a feature of
 /// another polygon (two edges inside polygons cannot both be seen; 001 §4.2).

@@ -19,14 +19,18 @@ double stark_F(double x, double y, double m) {
   return 0.5 * A * x * std::atan(A * y) + stark_F_slope_term(x, y, m);
 }
 
-double stark_vertex_term(double x, double y, double m_in, bool in_vertical, double m_out, bool out_vertical) {
-  if (!in_vertical && !out_vertical) return stark_F_slope_term(x, y, m_in) - stark_F_slope_term(x, y, m_out);
+double stark_vertex_term(double x, double y, double m_in, bool in_vertical, double m_out,
+                         bool out_vertical) {
+  if (!in_vertical && !out_vertical)
+    return stark_F_slope_term(x, y, m_in) - stark_F_slope_term(x, y, m_out);
   const double in = in_vertical ? 0.0 : stark_F(x, y, m_in);
   const double out = out_vertical ? 0.0 : stark_F(x, y, m_out);
   return in - out;
 }
 
-double stark_G(double x, double y, const Vec3& k) { return -0.5 * k.z() * std::atan(k.y() * x - k.x() * y); }
+double stark_G(double x, double y, const Vec3& k) {
+  return -0.5 * k.z() * std::atan(k.y() * x - k.x() * y);
+}
 
 double stark_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon) {
   // Horizon clip at a small height h above x's tangent plane, in 3D (the same clip the

@@ -21,7 +21,8 @@ double stark_F_slope_term(double x, double y, double m);
 /// One projected vertex's contribution to pi * FF: F(x, y, m_in) - F(x, y, m_out) with the
 /// cancelling first terms left out; a vertical edge (undefined slope) contributes no F at all
 /// (001 eq. 6). `in_vertical` / `out_vertical` say which incident edges are vertical.
-double stark_vertex_term(double x, double y, double m_in, bool in_vertical, double m_out, bool out_vertical);
+double stark_vertex_term(double x, double y, double m_in, bool in_vertical, double m_out,
+                         bool out_vertical);
 
 /// The m-dependent term of F written with the unit normal k of the edge's plane through x
 /// instead of its projected slope and intercept: the projected edge lies on the line

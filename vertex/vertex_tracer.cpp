@@ -37,8 +37,9 @@ struct Clusters {
 
 /// What one face shows in the cone of radius `radius` around d (001 Algorithm 1's three cases,
 /// Fig. 5), plus the features and vertices it brought (for the bookkeeping of §5).
-void classify(const LocalFace& f, const Vec3& d, const Vec2& q, double radius, std::vector<SpanEntry>& entries,
-              std::vector<int>& features, std::vector<int>& vertices) {
+void classify(const LocalFace& f, const Vec3& d, const Vec2& q, double radius,
+              std::vector<SpanEntry>& entries, std::vector<int>& features,
+              std::vector<int>& vertices) {
   const int n = static_cast<int>(f.dirs.size());
   const auto next = [n](int i) { return (i + 1) % n; };
   const auto prev = [n](int i) { return (i + n - 1) % n; };
@@ -92,7 +93,8 @@ void classify(const LocalFace& f, const Vec3& d, const Vec2& q, double radius, s
     if (f.k[i] == Vec3::Zero()) continue;
     if (f.k[i].dot(d) <= 0) inside = false;
     const double distance = relative_line_distance(f.k[i], q);
-    if (distance < best_distance && relative_segment_distance(f.image[i], f.image[next(i)], q) < radius) {
+    if (distance < best_distance &&
+        relative_segment_distance(f.image[i], f.image[next(i)], q) < radius) {
       best_distance = distance;
       best = i;
     }
@@ -116,7 +118,8 @@ Clusters cluster_candidates(const std::vector<Candidate>& candidates) {
   Clusters clusters(candidates.size());
   std::vector<std::pair<double, int>> order;
   order.reserve(candidates.size());
-  for (size_t i = 0; i < candidates.size(); ++i) order.emplace_back(std::log1p(candidates[i].q.norm()), static_cast<int>(i));
+  for (size_t i = 0; i < candidates.size(); ++i)
+    order.emplace_back(std::log1p(candidates[i].q.norm()), static_cast<int>(i));
   std::sort(order.begin(), order.end());
   for (size_t i = 0; i < order.size(); ++i) {
     for (size_t j = i + 1; j < order.size() && order[j].first - order[i].first < kNape; ++j) {
@@ -137,8 +140,8 @@ struct TracedCone {
 /// Step 5: one cone per cluster. If a cone meets a vertex or a pair of edges whose own
 /// candidate went to another cluster (an "unexpected incidence"), the two clusters are one
 /// conjunctive vertex: merge and trace again, so nothing is counted twice (001 §3.4, §5).
-std::vector<TracedCone> trace_cones(const LocalPicture& picture, Clusters& clusters, const EmitterCulling& culling,
-                                    VertexTraceResult& result) {
+std::vector<TracedCone> trace_cones(const LocalPicture& picture, Clusters& clusters,
+                                    const EmitterCulling& culling, VertexTraceResult& result) {
   const std::vector<Candidate>& candidates = picture.candidates;
   std::vector<ImageBox> face_boxes;
   for (const LocalFace& f : picture.faces) face_boxes.push_back(f.box);
@@ -185,7 +188,8 @@ std::vector<TracedCone> trace_cones(const LocalPicture& picture, Clusters& clust
         // Only candidates near the cone count: two nearly parallel features can both pass
         // through it and still cross far away, which is a different vertex.
         const auto merge = [&](int candidate) {
-          if (relative_distance(candidates[candidate].q, q) < 4 * radius && clusters.unite(root, candidate)) {
+          if (relative_distance(candidates[candidate].q, q) < 4 * radius &&
+              clusters.unite(root, candidate)) {
             merged = true;
             ++result.slow_path;
           }
@@ -193,7 +197,8 @@ std::vector<TracedCone> trace_cones(const LocalPicture& picture, Clusters& clust
         for (const int v : incident_vertices) merge(picture.vertex_candidate[v]);
         for (size_t a = 0; a < incident_features.size(); ++a) {
           for (size_t b = a + 1; b < incident_features.size(); ++b) {
-            const auto it = picture.crossing.find(pair_key(incident_features[a], incident_features[b]));
+            const auto it =
+                picture.crossing.find(pair_key(incident_features[a], incident_features[b]));
             if (it != picture.crossing.end()) merge(it->second);
           }
         }
@@ -226,7 +231,8 @@ class VertexTracer::Session final : public ExactGatherSession {
   Session(const VertexTracer& tracer, const Vec3& x, const Vec3& n)
       : tracer_(tracer), x_(x), n_(n), radiating_(tracer.faces_.size(), 0) {}
 
-  ExactGatherTotal step(const std::vector<int>& radiating, const std::vector<int>& occluders) override {
+  ExactGatherTotal step(const std::vector<int>& radiating,
+                        const std::vector<int>& occluders) override {
     std::vector<int> faces = radiating;
     faces.insert(faces.end(), occluders.begin(), occluders.end());
     std::ranges::sort(faces);
@@ -253,13 +259,15 @@ class VertexTracer::Session final : public ExactGatherSession {
 VertexTracer::VertexTracer(const Scene& scene) : VertexTracer(scene, faces_from_polygons(scene)) {}
 
 VertexTracer::VertexTracer(const Scene& scene, std::vector<EmittingFace> faces)
-    : polygon_count_(scene.polygons.size()), faces_(std::move(faces)), in_plane_(scene.tolerance().in_plane) {
+    : polygon_count_(scene.polygons.size()),
+      faces_(std::move(faces)),
+      in_plane_(scene.tolerance().in_plane) {
   for (const EmittingFace& f : faces_) {
-    if (f.polygon < 0 || f.polygon >= static_cast<int>(scene.polygons.size()) || f.vertices.size() < 3 ||
-        f.on_boundary.size() != f.vertices.size()) {
-      throw Error("vertex tracing: a face refers to polygon " + std::to_string(f.polygon) + " or has " +
-                  std::to_string(f.vertices.size()) + " vertices and " + std::to_string(f.on_boundary.size()) +
-                  " edge flags");
+    if (f.polygon < 0 || f.polygon >= static_cast<int>(scene.polygons.size()) ||
+        f.vertices.size() < 3 || f.on_boundary.size() != f.vertices.size()) {
+      throw Error("vertex tracing: a face refers to polygon " + std::to_string(f.polygon) +
+                  " or has " + std::to_string(f.vertices.size()) + " vertices and " +
+                  std::to_string(f.on_boundary.size()) + " edge flags");
     }
   }
   for (const Interpenetration& s : interpenetration_segments(scene)) {
@@ -275,8 +283,8 @@ std::unique_ptr<ExactGatherSession> VertexTracer::start(const Vec3& x, const Vec
 
 VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Options& options) const {
   if (options.emitting && options.emitting->size() != faces_.size()) {
-    throw Error("vertex tracing: " + std::to_string(options.emitting->size()) + " emitting flags for " +
-                std::to_string(faces_.size()) + " faces");
+    throw Error("vertex tracing: " + std::to_string(options.emitting->size()) +
+                " emitting flags for " + std::to_string(faces_.size()) + " faces");
   }
   VertexTraceResult result;
   const PlaneFrame plane(Vec3::Zero(), n);
@@ -293,7 +301,8 @@ VertexTraceResult VertexTracer::gather(const Vec3& x, const Vec3& n, const Optio
   const ImageBoxTree emitter_tree(picture.emitter_boxes);
   const EmitterCulling culling{&emitter_tree, options.cull_to_emitters};
   std::erase_if(picture.faces, [&](const LocalFace& f) { return !culling.near_emitter(f.box); });
-  add_features(picture, frame, faces_, intersections_, options.faces ? &polygon_present : nullptr, culling);
+  add_features(picture, frame, faces_, intersections_, options.faces ? &polygon_present : nullptr,
+               culling);
   add_vertices_and_crossings(picture);
   result.candidates = static_cast<int>(picture.candidates.size());
 

@@ -21,9 +21,9 @@ struct Segment;
 struct VertexTraceResult {
   Rgb irradiance = Rgb::Zero();  ///< H(x) [W/m^2]
   int candidates = 0;            ///< Vertices and apparent crossings found (before merging)
-  int traced = 0;                ///< Cones traced: one per (possibly conjunctive) visible-map vertex
-  int conjunctive = 0;           ///< Cones that merged more than one candidate
-  int slow_path = 0;             ///< Merges forced by an unexpected incidence (001 §5's rigorous path)
+  int traced = 0;       ///< Cones traced: one per (possibly conjunctive) visible-map vertex
+  int conjunctive = 0;  ///< Cones that merged more than one candidate
+  int slow_path = 0;    ///< Merges forced by an unexpected incidence (001 §5's rigorous path)
 };
 
 class VertexTracer final : public ExactGatherer {
@@ -66,8 +66,9 @@ class VertexTracer final : public ExactGatherer {
   class Session;
   size_t polygon_count_ = 0;
   std::vector<EmittingFace> faces_;
-  std::vector<vertex_detail::Segment> intersections_;  ///< Where polygons interpenetrate (view-independent)
-  double in_plane_ = 0;                                ///< Tolerance::in_plane
+  std::vector<vertex_detail::Segment>
+      intersections_;    ///< Where polygons interpenetrate (view-independent)
+  double in_plane_ = 0;  ///< Tolerance::in_plane
 };
 
 }  // namespace rad

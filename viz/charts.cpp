@@ -29,11 +29,13 @@ namespace rad {
 namespace {
 
 /// Colour-blind-safe line colours (Okabe and Ito 2008), cycled.
-constexpr unsigned char kPalette[][3] = {{0, 114, 178}, {213, 94, 0},  {0, 158, 115}, {204, 121, 167},
-                                         {230, 159, 0}, {86, 180, 233}, {0, 0, 0},     {240, 228, 66}};
+constexpr unsigned char kPalette[][3] = {{0, 114, 178},   {213, 94, 0},  {0, 158, 115},
+                                         {204, 121, 167}, {230, 159, 0}, {86, 180, 233},
+                                         {0, 0, 0},       {240, 228, 66}};
 
 /// Renders the view offscreen at width x height on white and writes the frame as a PNG.
-void write_view_png(const std::filesystem::path& file, vtkContextView* view, int width, int height) {
+void write_view_png(const std::filesystem::path& file, vtkContextView* view, int width,
+                    int height) {
   vtkRenderWindow* window = view->GetRenderWindow();
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);
@@ -60,8 +62,10 @@ void write_chart_png(const std::filesystem::path& file, const LineChart& chart) 
   style_axis(xy->GetAxis(vtkAxis::BOTTOM), chart.x_label, chart.log_x);
   style_axis(xy->GetAxis(vtkAxis::LEFT), chart.y_label, chart.log_y);
   xy->SetShowLegend(true);
-  const bool left = chart.legend == LineChart::Corner::top_left || chart.legend == LineChart::Corner::bottom_left;
-  const bool top = chart.legend == LineChart::Corner::top_left || chart.legend == LineChart::Corner::top_right;
+  const bool left =
+      chart.legend == LineChart::Corner::top_left || chart.legend == LineChart::Corner::bottom_left;
+  const bool top =
+      chart.legend == LineChart::Corner::top_left || chart.legend == LineChart::Corner::top_right;
   xy->GetLegend()->SetHorizontalAlignment(left ? vtkChartLegend::LEFT : vtkChartLegend::RIGHT);
   xy->GetLegend()->SetVerticalAlignment(top ? vtkChartLegend::TOP : vtkChartLegend::BOTTOM);
   xy->GetLegend()->GetLabelProperties()->SetFontSize(14);
@@ -104,12 +108,14 @@ void write_chart_png(const std::filesystem::path& file, const LineChart& chart) 
 
 std::pair<int, int> heat_map_png_size(const HeatMap& map) {
   // At least ~480 pixels for the image itself, plus margins for the axes and the colour bar.
-  const int scale = std::max(1, static_cast<int>(std::ceil(480.0 / std::max(1, std::max(map.width, map.height)))));
+  const int scale = std::max(
+      1, static_cast<int>(std::ceil(480.0 / std::max(1, std::max(map.width, map.height)))));
   return {map.width * scale + 260, map.height * scale + 120};
 }
 
 void write_heat_map_png(const std::filesystem::path& file, const HeatMap& map) {
-  if (map.width <= 0 || map.height <= 0 || map.values.size() != static_cast<size_t>(map.width) * map.height) {
+  if (map.width <= 0 || map.height <= 0 ||
+      map.values.size() != static_cast<size_t>(map.width) * map.height) {
     throw Error(file.string() + ": heat map has no pixels");
   }
   ensure_display();
@@ -122,7 +128,8 @@ void write_heat_map_png(const std::filesystem::path& file, const HeatMap& map) {
     for (int x = 0; x < map.width; ++x) {
       // VTK's image row 0 is the bottom row.
       const double v = map.values[static_cast<size_t>(y) * map.width + x];
-      values[static_cast<size_t>(map.height - 1 - y) * map.width + x] = std::isnan(v) ? v : std::min(v, top);
+      values[static_cast<size_t>(map.height - 1 - y) * map.width + x] =
+          std::isnan(v) ? v : std::min(v, top);
     }
   }
   // A perceptually ordered ramp: dark blue, cyan, yellow, dark red.

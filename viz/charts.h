@@ -16,7 +16,8 @@ struct ChartSeries {
 
 struct LineChart {
   std::string title, x_label, y_label;
-  bool log_x = false, log_y = false;  ///< Points with a non-positive coordinate on a log axis are left out.
+  bool log_x = false,
+       log_y = false;  ///< Points with a non-positive coordinate on a log axis are left out.
   std::vector<ChartSeries> series;
   int width = 900, height = 600;
   /// Where the legend goes, inside the plot: pick the corner the curves leave empty.

@@ -6,8 +6,8 @@
 
 namespace rad {
 
-void write_error_heat_map(const std::filesystem::path& png, const ErrorMap& map, const std::string& title,
-                          double max_value) {
+void write_error_heat_map(const std::filesystem::path& png, const ErrorMap& map,
+                          const std::string& title, double max_value) {
   HeatMap heat;
   heat.width = map.width;
   heat.height = map.height;

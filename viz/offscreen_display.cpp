@@ -19,8 +19,8 @@
 #include <mutex>
 #include <string>
 
-#include "scene/error.h"
 #include "formats/atomic_file.h"
+#include "scene/error.h"
 
 namespace rad {
 namespace {
@@ -56,7 +56,8 @@ void stop_xvfb() {
 /// Starts Xvfb on a free display and returns ":N" once it accepts connections. Throws Error.
 std::string start_xvfb() {
   int pipe_fds[2];
-  if (pipe(pipe_fds) != 0) throw Error(std::string("cannot start Xvfb: pipe: ") + std::strerror(errno));
+  if (pipe(pipe_fds) != 0)
+    throw Error(std::string("cannot start Xvfb: pipe: ") + std::strerror(errno));
   // Xvfb writes the display number it chose to this descriptor once it accepts connections.
   // Built before fork: the child of a threaded process must not allocate.
   const std::string fd = std::to_string(pipe_fds[1]);
@@ -73,8 +74,8 @@ std::string start_xvfb() {
     // -noreset: by default an X server resets when its last client leaves, and a connection
     // made during the reset fails; VTK then crashed in XSync (seen under ctest -j2, where the
     // chart's window and its interactor open and close connections on a loaded machine).
-    execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1920x1200x24", "-nolisten", "tcp",
-           "-noreset", static_cast<char*>(nullptr));
+    execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1920x1200x24", "-nolisten",
+           "tcp", "-noreset", static_cast<char*>(nullptr));
     _exit(127);
   }
   close(pipe_fds[1]);
@@ -93,8 +94,9 @@ std::string start_xvfb() {
     waitpid(pid, &status, 0);
     const bool missing = WIFEXITED(status) && WEXITSTATUS(status) == 127;
     throw Error(std::string("drawing needs an X display: none answers at $DISPLAY and ") +
-                (missing ? "Xvfb is not installed (apt-get install xvfb, or scripts/install-deps.sh)"
-                         : "Xvfb did not start"));
+                (missing
+                     ? "Xvfb is not installed (apt-get install xvfb, or scripts/install-deps.sh)"
+                     : "Xvfb did not start"));
   }
   xvfb_pid = pid;
   std::atexit(stop_xvfb);

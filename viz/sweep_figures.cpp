@@ -10,9 +10,10 @@ namespace rad {
 void write_sweep_figures(const std::filesystem::path& folder, const SweepResult& sweep) {
   for (size_t i = 0; i < sweep.rows.size(); ++i) {
     const SweepRow& row = sweep.rows[i];
-    write_error_heat_map(folder / "error_maps" / (row.slug() + ".png"), sweep.maps[i],
-                         "relative error of " + row.label() + " (max " + csv_number(row.error.max) + ")",
-                         sweep.error_scale);
+    write_error_heat_map(
+        folder / "error_maps" / (row.slug() + ".png"), sweep.maps[i],
+        "relative error of " + row.label() + " (max " + csv_number(row.error.max) + ")",
+        sweep.error_scale);
   }
   write_sweep_charts(folder, sweep.rows);
 }
@@ -26,7 +27,8 @@ void write_sweep_charts(const std::filesystem::path& folder, const std::vector<S
     for (const SweepRow& r : rows) {
       if ((exact_only && !r.exact()) || (r.exact() && r.tolerance == 0)) continue;
       const std::string name = method_name(r.method) + suffix;
-      auto it = std::find_if(out.begin(), out.end(), [&](const ChartSeries& s) { return s.name == name; });
+      auto it = std::find_if(out.begin(), out.end(),
+                             [&](const ChartSeries& s) { return s.name == name; });
       if (it == out.end()) it = out.insert(out.end(), ChartSeries{name, {}, {}});
       it->x.push_back(x(r));
       it->y.push_back(y(r));
@@ -36,7 +38,8 @@ void write_sweep_charts(const std::filesystem::path& folder, const std::vector<S
   const auto tolerance = [](const SweepRow& r) { return r.tolerance; };
 
   // All three charts have log axes.
-  const auto log_log = [](std::string title, std::string x_label, std::string y_label, LineChart::Corner legend) {
+  const auto log_log = [](std::string title, std::string x_label, std::string y_label,
+                          LineChart::Corner legend) {
     LineChart chart;
     chart.title = std::move(title);
     chart.x_label = std::move(x_label);
@@ -46,16 +49,19 @@ void write_sweep_charts(const std::filesystem::path& folder, const std::vector<S
     return chart;
   };
 
-  LineChart error_chart = log_log("Relative error against tolerance (reference: tolerance 0)", "tolerance T",
-                                  "relative error", LineChart::Corner::bottom_right);
-  error_chart.series = series_by_method(true, " max", tolerance, [](const SweepRow& r) { return r.error.max; });
-  for (ChartSeries& s : series_by_method(true, " RMS", tolerance, [](const SweepRow& r) { return r.error.rms; })) {
+  LineChart error_chart = log_log("Relative error against tolerance (reference: tolerance 0)",
+                                  "tolerance T", "relative error", LineChart::Corner::bottom_right);
+  error_chart.series =
+      series_by_method(true, " max", tolerance, [](const SweepRow& r) { return r.error.max; });
+  for (ChartSeries& s :
+       series_by_method(true, " RMS", tolerance, [](const SweepRow& r) { return r.error.rms; })) {
     error_chart.series.push_back(std::move(s));
   }
-  // What the bound promises against the exact value: |e| <= T / (1 - T) (README).
+  // What the bound promises against the exact value: |e| <= T / (1 - T) (localpass/local_pass.h).
   ChartSeries promise{"T / (1 - T)", {}, {}};
   for (const SweepRow& r : rows) {
-    if (r.exact() && r.tolerance > 0 && std::find(promise.x.begin(), promise.x.end(), r.tolerance) == promise.x.end()) {
+    if (r.exact() && r.tolerance > 0 &&
+        std::find(promise.x.begin(), promise.x.end(), r.tolerance) == promise.x.end()) {
       promise.x.push_back(r.tolerance);
     }
   }
@@ -64,15 +70,17 @@ void write_sweep_charts(const std::filesystem::path& folder, const std::vector<S
   error_chart.series.push_back(std::move(promise));
   write_chart_png(folder / "error_vs_tolerance.png", error_chart);
 
-  LineChart time_chart =
-      log_log("Render time against tolerance", "tolerance T", "seconds", LineChart::Corner::top_right);
-  time_chart.series = series_by_method(true, "", tolerance, [](const SweepRow& r) { return r.seconds; });
+  LineChart time_chart = log_log("Render time against tolerance", "tolerance T", "seconds",
+                                 LineChart::Corner::top_right);
+  time_chart.series =
+      series_by_method(true, "", tolerance, [](const SweepRow& r) { return r.seconds; });
   write_chart_png(folder / "time_vs_tolerance.png", time_chart);
 
-  LineChart tradeoff = log_log("RMS error against render time (all methods)", "seconds", "RMS relative error",
-                               LineChart::Corner::bottom_left);
-  tradeoff.series = series_by_method(false, "", [](const SweepRow& r) { return r.seconds; },
-                                     [](const SweepRow& r) { return r.error.rms; });
+  LineChart tradeoff = log_log("RMS error against render time (all methods)", "seconds",
+                               "RMS relative error", LineChart::Corner::bottom_left);
+  tradeoff.series = series_by_method(
+      false, "", [](const SweepRow& r) { return r.seconds; },
+      [](const SweepRow& r) { return r.error.rms; });
   write_chart_png(folder / "error_vs_time.png", tradeoff);
 }
 

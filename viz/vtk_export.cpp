@@ -21,12 +21,12 @@
 
 #include <algorithm>
 
-#include "scene/error.h"
-#include "scene/polygon.h"
 #include "formats/atomic_file.h"
 #include "formats/image_io.h"
-#include "viz/offscreen_display.h"
 #include "formats/patch_mesh_polydata.h"
+#include "scene/error.h"
+#include "scene/polygon.h"
+#include "viz/offscreen_display.h"
 
 namespace rad {
 namespace {
@@ -39,7 +39,8 @@ void write_xml(const std::filesystem::path& file, Data* data, const std::string&
   writer->SetInputData(data);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();
-  if (writer->Write() != 1 || writer->GetErrorCode() != 0) throw Error(file.string() + ": cannot write " + what);
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+    throw Error(file.string() + ": cannot write " + what);
   out.commit();
 }
 
@@ -52,7 +53,8 @@ void write_octree_vtu(const std::filesystem::path& file, const Octree& octree) {
   for (size_t v = 0; v < voxels.size(); ++v) {
     for (const int i : voxels[v].items) {
       const OctreeItem& item = octree.items()[i];
-      energy[v] += 0.5 * newell_vector(item.corners).norm() * item.radiosity.maxCoeff();  // area x B
+      energy[v] +=
+          0.5 * newell_vector(item.corners).norm() * item.radiosity.maxCoeff();  // area x B
     }
   }
   for (size_t v = voxels.size(); v-- > 0;) {
@@ -78,8 +80,9 @@ void write_octree_vtu(const std::filesystem::path& file, const Octree& octree) {
     const Vec3 lo = voxel.cell.min(), hi = voxel.cell.max();
     // VTK_HEXAHEDRON order: the bottom face counter-clockwise, then the top face above it.
     vtkIdType ids[8];
-    const double corners[8][3] = {{lo.x(), lo.y(), lo.z()}, {hi.x(), lo.y(), lo.z()}, {hi.x(), hi.y(), lo.z()},
-                                  {lo.x(), hi.y(), lo.z()}, {lo.x(), lo.y(), hi.z()}, {hi.x(), lo.y(), hi.z()},
+    const double corners[8][3] = {{lo.x(), lo.y(), lo.z()}, {hi.x(), lo.y(), lo.z()},
+                                  {hi.x(), hi.y(), lo.z()}, {lo.x(), hi.y(), lo.z()},
+                                  {lo.x(), lo.y(), hi.z()}, {hi.x(), lo.y(), hi.z()},
                                   {hi.x(), hi.y(), hi.z()}, {lo.x(), hi.y(), hi.z()}};
     for (int k = 0; k < 8; ++k) ids[k] = points->InsertNextPoint(corners[k]);
     grid->InsertNextCell(VTK_HEXAHEDRON, 8, ids);
@@ -91,7 +94,8 @@ void write_octree_vtu(const std::filesystem::path& file, const Octree& octree) {
     leaf->InsertNextValue(voxel.is_leaf() ? 1 : 0);
   }
   grid->SetPoints(points);
-  for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{bmax, bmax_max, energy_array, count, level, leaf}) {
+  for (vtkAbstractArray* a :
+       std::initializer_list<vtkAbstractArray*>{bmax, bmax_max, energy_array, count, level, leaf}) {
     grid->GetCellData()->AddArray(a);
   }
   grid->GetCellData()->SetActiveScalars("bmax_max");
@@ -104,8 +108,9 @@ void write_pixel_image_vti(const std::filesystem::path& file, int width, int hei
   image->SetDimensions(width, height, 1);
   for (const auto& [name, values] : arrays) {
     if (values.size() != static_cast<size_t>(width) * height) {
-      throw Error(file.string() + ": array " + name + " has " + std::to_string(values.size()) + " values for " +
-                  std::to_string(width) + "x" + std::to_string(height) + " pixels");
+      throw Error(file.string() + ": array " + name + " has " + std::to_string(values.size()) +
+                  " values for " + std::to_string(width) + "x" + std::to_string(height) +
+                  " pixels");
     }
     vtkNew<vtkFloatArray> a;
     a->SetName(name.c_str());
@@ -113,7 +118,8 @@ void write_pixel_image_vti(const std::filesystem::path& file, int width, int hei
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
         // VTK's row 0 is the bottom row.
-        a->SetValue(static_cast<vtkIdType>(height - 1 - y) * width + x, values[static_cast<size_t>(y) * width + x]);
+        a->SetValue(static_cast<vtkIdType>(height - 1 - y) * width + x,
+                    values[static_cast<size_t>(y) * width + x]);
       }
     }
     image->GetPointData()->AddArray(a);
@@ -121,8 +127,8 @@ void write_pixel_image_vti(const std::filesystem::path& file, int width, int hei
   write_xml<vtkXMLImageDataWriter>(file, image.Get(), "the pixel image");
 }
 
-void write_patch_mesh_png(const std::filesystem::path& file, const Solution& solution, const Scene& scene,
-                          const CameraSpec& camera, double exposure) {
+void write_patch_mesh_png(const std::filesystem::path& file, const Solution& solution,
+                          const Scene& scene, const CameraSpec& camera, double exposure) {
   ensure_display();
   const vtkSmartPointer<vtkPolyData> mesh = patch_mesh_polydata(solution, scene);
   // Colours are the radiosities tone-mapped as the PNG previews are: what is seen is B itself.
@@ -132,7 +138,8 @@ void write_patch_mesh_png(const std::filesystem::path& file, const Solution& sol
   colours->SetNumberOfComponents(3);
   for (vtkIdType i = 0; i < mesh->GetNumberOfCells(); ++i) {
     const double* b = radiosity->GetTuple3(i);
-    colours->InsertNextTuple3(to_srgb8(b[0], exposure), to_srgb8(b[1], exposure), to_srgb8(b[2], exposure));
+    colours->InsertNextTuple3(to_srgb8(b[0], exposure), to_srgb8(b[1], exposure),
+                              to_srgb8(b[2], exposure));
   }
   mesh->GetCellData()->AddArray(colours);
 

@@ -30,7 +30,7 @@ void write_pixel_image_vti(const std::filesystem::path& file, int width, int hei
 /// of view): each element flat-shaded with its radiosity (linear x 2^exposure, clamped,
 /// sRGB-encoded; exposure < 0 ... > 0 as for previews) and the element edges drawn thin and
 /// dark. RGB PNG of the camera's size. Needs an X display (started if missing). Throws Error.
-void write_patch_mesh_png(const std::filesystem::path& file, const Solution& solution, const Scene& scene,
-                          const CameraSpec& camera, double exposure = 0);
+void write_patch_mesh_png(const std::filesystem::path& file, const Solution& solution,
+                          const Scene& scene, const CameraSpec& camera, double exposure = 0);
 
 }  // namespace rad

@@ -14,8 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kModules{"geometry", "scene",  "hemisphere",  "vertex", "radiosity", "octree",
-                                        "localpass", "formats", "render", "experiments", "viz",      "cli"};
+const std::vector<std::string> kModules{"geometry",  "scene",       "hemisphere", "vertex",
+                                        "radiosity", "octree",      "localpass",  "formats",
+                                        "render",    "experiments", "viz",        "cli"};
 
 /// Modules each module may include (itself included): the graph of docs/architecture.md.
 /// tests/ and bench/ may use everything.
@@ -26,14 +27,18 @@ const std::map<std::string, std::set<std::string>> kAllowedModules{
     {"vertex", {"vertex", "scene", "geometry"}},
     {"radiosity", {"radiosity", "scene", "geometry"}},
     {"octree", {"octree", "radiosity", "scene", "geometry"}},
-    {"localpass", {"localpass", "octree", "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
+    {"localpass",
+     {"localpass", "octree", "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
     {"formats", {"formats", "radiosity", "scene", "geometry"}},
     {"render", {"render", "localpass", "octree", "radiosity", "scene", "geometry", "formats"}},
-    {"experiments", {"experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry", "formats"}},
-    {"viz", {"viz", "experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry", "formats"}},
+    {"experiments",
+     {"experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry", "formats"}},
+    {"viz",
+     {"viz", "experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry",
+      "formats"}},
     {"cli",
-     {"cli", "viz", "experiments", "render", "formats", "localpass", "octree", "hemisphere", "vertex", "radiosity",
-      "scene", "geometry"}},
+     {"cli", "viz", "experiments", "render", "formats", "localpass", "octree", "hemisphere",
+      "vertex", "radiosity", "scene", "geometry"}},
 };
 
 /// Third-party headers, by include prefix, and the modules that may include them. Eigen and the
@@ -50,7 +55,10 @@ const std::vector<std::pair<std::string, ThirdParty>>& third_party() {
       {"VTK", {std::regex(R"(^vtk\w*\.h$)"), {"formats", "viz", "cli"}, false}},
       {"OpenEXR", {std::regex(R"(^(Imf|Imath|Iex|OpenEXR/|Imath/))"), {"formats"}, false}},
       {"OpenMesh", {std::regex(R"(^OpenMesh/)"), {"scene", "radiosity"}, false}},
-      {"TBB", {std::regex(R"(^(tbb|oneapi)/)"), {"radiosity", "localpass", "render", "experiments", "cli"}, false}},
+      {"TBB",
+       {std::regex(R"(^(tbb|oneapi)/)"),
+        {"radiosity", "localpass", "render", "experiments", "cli"},
+        false}},
       {"nlohmann-json", {std::regex(R"(^nlohmann/)"), {"scene", "formats", "cli"}, false}},
       {"CLI11", {std::regex(R"(^CLI/)"), {"cli"}, false}},
   };
@@ -78,8 +86,10 @@ std::vector<std::string> include_violations(const std::string& module, const std
     }
     for (const auto& [name, rule] : third_party()) {
       if (!std::regex_search(header, rule.include)) continue;
-      if (!rule.modules.count(module)) out.push_back(where + module + " may not use " + name + " (" + header + ")");
-      if (rule.sources_only && is_header) out.push_back(where + name + " must not appear in a header");
+      if (!rule.modules.count(module))
+        out.push_back(where + module + " may not use " + name + " (" + header + ")");
+      if (rule.sources_only && is_header)
+        out.push_back(where + name + " must not appear in a header");
     }
   }
   return out;
@@ -89,12 +99,14 @@ std::vector<std::string> include_violations(const std::string& module, const std
 std::vector<std::string> link_violations(const std::string& module, const std::string& text) {
   std::vector<std::string> out;
   static const std::regex target(R"(\brad_(\w+))");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), target); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), target);
+       it != std::sregex_iterator(); ++it) {
     const std::string name = (*it)[1];
     if (name == "warnings" || name == "module_includes") continue;
     if (std::find(kModules.begin(), kModules.end(), name) == kModules.end()) continue;
     if (!kAllowedModules.at(module).count(name)) {
-      out.push_back(module + "/CMakeLists.txt links rad_" + name + ", which " + module + " may not use");
+      out.push_back(module + "/CMakeLists.txt links rad_" + name + ", which " + module +
+                    " may not use");
     }
   }
   return out;
@@ -115,20 +127,38 @@ std::string join(const std::vector<std::string>& lines) {
 
 TEST(ModuleGraph, CheckerCatchesForbiddenIncludes) {
   // The checker itself must be able to fail.
-  EXPECT_EQ(include_violations("scene", "scene/a.cpp", "#include \"formats/image_io.h\"\n").size(), 1u);
-  EXPECT_EQ(include_violations("hemisphere", "hemisphere/a.cpp", "#include \"scene/scene.h\"\n").size(), 1u);
-  EXPECT_EQ(include_violations("geometry", "geometry/a.h", "#include \"scene/polygon.h\"\n").size(), 1u);
-  EXPECT_EQ(include_violations("vertex", "vertex/a.cpp", "#include \"hemisphere/visible_surface.h\"\n").size(), 1u);
+  EXPECT_EQ(include_violations("scene", "scene/a.cpp", "#include \"formats/image_io.h\"\n").size(),
+            1u);
+  EXPECT_EQ(
+      include_violations("hemisphere", "hemisphere/a.cpp", "#include \"scene/scene.h\"\n").size(),
+      1u);
+  EXPECT_EQ(include_violations("geometry", "geometry/a.h", "#include \"scene/polygon.h\"\n").size(),
+            1u);
+  EXPECT_EQ(
+      include_violations("vertex", "vertex/a.cpp", "#include \"hemisphere/visible_surface.h\"\n")
+          .size(),
+      1u);
   EXPECT_EQ(include_violations("render", "render/a.cpp", "#include \"viz/charts.h\"\n").size(), 1u);
-  EXPECT_EQ(include_violations("experiments", "experiments/a.cpp", "#include <vtkNew.h>\n").size(), 1u);
-  EXPECT_EQ(include_violations("formats", "formats/a.cpp", "#include \"localpass/local_pass.h\"\n").size(), 1u);
+  EXPECT_EQ(include_violations("experiments", "experiments/a.cpp", "#include <vtkNew.h>\n").size(),
+            1u);
+  EXPECT_EQ(include_violations("formats", "formats/a.cpp", "#include \"localpass/local_pass.h\"\n")
+                .size(),
+            1u);
   EXPECT_EQ(include_violations("scene", "scene/a.h", "#include <embree3/rtcore.h>\n").size(), 1u);
-  EXPECT_EQ(include_violations("localpass", "localpass/a.cpp", "  #  include <vtkNew.h>\n").size(), 1u);
+  EXPECT_EQ(include_violations("localpass", "localpass/a.cpp", "  #  include <vtkNew.h>\n").size(),
+            1u);
   EXPECT_EQ(include_violations("octree", "octree/a.cpp", "#include <ImfHeader.h>\n").size(), 1u);
-  EXPECT_TRUE(include_violations("viz", "viz/a.cpp", "#include \"scene/scene.h\"\n#include <vtkNew.h>\n").empty());
+  EXPECT_TRUE(
+      include_violations("viz", "viz/a.cpp", "#include \"scene/scene.h\"\n#include <vtkNew.h>\n")
+          .empty());
   EXPECT_TRUE(include_violations("scene", "scene/a.cpp", "#include <embree3/rtcore.h>\n").empty());
-  EXPECT_EQ(link_violations("radiosity", "target_link_libraries(rad_radiosity PUBLIC rad_octree)").size(), 1u);
-  EXPECT_TRUE(link_violations("octree", "target_link_libraries(rad_octree PUBLIC rad_radiosity rad_scene rad_warnings)").empty());
+  EXPECT_EQ(
+      link_violations("radiosity", "target_link_libraries(rad_radiosity PUBLIC rad_octree)").size(),
+      1u);
+  EXPECT_TRUE(
+      link_violations(
+          "octree", "target_link_libraries(rad_octree PUBLIC rad_radiosity rad_scene rad_warnings)")
+          .empty());
 }
 
 TEST(ModuleGraph, SourcesIncludeOnlyAllowedModulesAndLibraries) {
@@ -142,7 +172,8 @@ TEST(ModuleGraph, SourcesIncludeOnlyAllowedModulesAndLibraries) {
       if (ext != ".h" && ext != ".cpp" && ext != ".hpp") continue;
       ++files;
       const std::string relative = fs::relative(entry.path(), root).string();
-      for (auto& v : include_violations(module, relative, read(entry.path()))) violations.push_back(v);
+      for (auto& v : include_violations(module, relative, read(entry.path())))
+        violations.push_back(v);
     }
   }
   EXPECT_GT(files, 10);

@@ -12,17 +12,16 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <Eigen/Core>
-
-#include "tests/bad_scene_cases.h"
 #include "formats/image_io.h"
 #include "formats/solution_io.h"
+#include "tests/bad_scene_cases.h"
 
 namespace {
 
@@ -63,8 +62,8 @@ Result run(const std::string& args) {
   fs::create_directories(dir);
   const std::string tag = std::to_string(::getpid());
   const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  const std::string command = std::string("'") + RADIOSITY_EXE + "' " + args + " >'" + out.string() +
-                              "' 2>'" + err.string() + "' </dev/null";
+  const std::string command = std::string("'") + RADIOSITY_EXE + "' " + args + " >'" +
+                              out.string() + "' 2>'" + err.string() + "' </dev/null";
   const int status = std::system(command.c_str());
   Result r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -74,8 +73,8 @@ Result run(const std::string& args) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* args : {"--help", "info --help", "solve --help", "probe --help", "render --help", "sweep --help",
-                           "compare --help", "export --help"}) {
+  for (const char* args : {"--help", "info --help", "solve --help", "probe --help", "render --help",
+                           "sweep --help", "compare --help", "export --help"}) {
     const Result r = run(args);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_NE(r.out.find("Usage:"), std::string::npos) << args << "\n" << r.out;
@@ -85,7 +84,8 @@ TEST(Cli, EverySubcommandHasHelp) {
 TEST(Cli, UsageErrorsExitTwo) {
   for (const char* args : {"", "info", "render scene.json", "info a.json --no-such-option",
                            "render x.json --method nope -o y.exr", "frobnicate", "compare a.exr",
-                           "sweep x.json -s s.vtp -o d --tolerances 0,1.5", "sweep x.json -s s.vtp -o d --methods nope",
+                           "sweep x.json -s s.vtp -o d --tolerances 0,1.5",
+                           "sweep x.json -s s.vtp -o d --methods nope",
                            "sweep x.json -s s.vtp -o d --samples 0", "export x.json -o d"}) {
     const Result r = run(args);
     EXPECT_EQ(r.exit_code, 2) << "'" << args << "'\n" << r.err;
@@ -127,8 +127,9 @@ TEST(Cli, InfoReportsTheCornellBox) {
 
 TEST(Cli, RenderAlbedoWritesExrAndPng) {
   const fs::path dir = scratch();
-  const Result r = run("render '" + (kRoot / "data/cornell-box/scene.json").string() +
-                       "' --method albedo --width 40 --height 30 -o '" + (dir / "img.exr").string() + "'");
+  const Result r =
+      run("render '" + (kRoot / "data/cornell-box/scene.json").string() +
+          "' --method albedo --width 40 --height 30 -o '" + (dir / "img.exr").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const rad::Image image = rad::read_exr(dir / "img.exr");
   EXPECT_EQ(image.width, 40);
@@ -141,14 +142,14 @@ TEST(Cli, RenderAlbedoWritesExrAndPng) {
 
 TEST(Cli, RenderWithoutCameraOrWithBadOutputExitsOne) {
   const fs::path dir = scratch();
-  Result r = run("render '" + (kData / "meshes/square_obj.json").string() + "' --method albedo -o '" +
-                 (dir / "x.exr").string() + "'");
+  Result r = run("render '" + (kData / "meshes/square_obj.json").string() +
+                 "' --method albedo -o '" + (dir / "x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("no \"camera\" block"), std::string::npos) << r.err;
   // An output whose folder cannot be created (a regular file is in the way).
   std::ofstream(dir / "file") << "x";
-  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() + "' --method albedo --width 8 --height 8 -o '" +
-          (dir / "file/x.exr").string() + "'");
+  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() +
+          "' --method albedo --width 8 --height 8 -o '" + (dir / "file/x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("file/x.exr"), std::string::npos) << r.err;
   // export's picture needs the camera too: refused before anything is written; --no-png works.
@@ -159,7 +160,8 @@ TEST(Cli, RenderWithoutCameraOrWithBadOutputExitsOne) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("no \"camera\" block"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "ex"));
-  r = run("export " + square + " -s " + quoted(dir / "sq.vtp") + " -o " + quoted(dir / "ex") + " --no-png");
+  r = run("export " + square + " -s " + quoted(dir / "sq.vtp") + " -o " + quoted(dir / "ex") +
+          " --no-png");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "ex/octree.vtu"));
 }
@@ -189,10 +191,12 @@ TEST(Cli, RenderPatchesRefusesAMissingOrMismatchedSolution) {
   Result r = run("render " + floor + " --method patches -o '" + (dir / "x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("needs --solution"), std::string::npos) << r.err;
-  r = run("solve " + floor + " --patch-size 0.3 --refine-threshold 0 -o '" + (dir / "floor.vtp").string() + "'");
+  r = run("solve " + floor + " --patch-size 0.3 --refine-threshold 0 -o '" +
+          (dir / "floor.vtp").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() + "' --method patches --solution '" +
-          (dir / "floor.vtp").string() + "' -o '" + (dir / "x.exr").string() + "'");
+  r = run("render '" + (kRoot / "data/closed-cube/scene.json").string() +
+          "' --method patches --solution '" + (dir / "floor.vtp").string() + "' -o '" +
+          (dir / "x.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("solved for a different scene"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "x.exr"));
@@ -250,7 +254,8 @@ TEST(Cli, ProbeVertexMethodAgreesWithHemisphere) {
   ASSERT_EQ(h.size(), v.size());
   ASSERT_GT(h.size(), 0u);
   for (size_t i = 0; i < h.size(); ++i) {
-    for (int c = 6; c < 9; ++c) EXPECT_NEAR(v[i][c], h[i][c], std::max(1e-9 * h[i][c], 1e-12)) << "row " << i;
+    for (int c = 6; c < 9; ++c)
+      EXPECT_NEAR(v[i][c], h[i][c], std::max(1e-9 * h[i][c], 1e-12)) << "row " << i;
   }
   EXPECT_NE(run(args + " --method montecarlo").exit_code, 0);
 }
@@ -277,14 +282,15 @@ TEST(Cli, LocalPassRenderWritesImageStatsAndProbeFillsTheBound) {
   const std::string scene = quoted(kRoot / "data/light-over-floor/scene.json");
   Result r = run("solve " + scene + " --patch-size 0.2 -o " + quoted(dir / "s.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run("render " + scene + " --method hemisphere --tolerance 0.2 --solution " + quoted(dir / "s.vtp") +
-          " --width 16 --height 12 -o " + quoted(dir / "lp.exr"));
+  r = run("render " + scene + " --method hemisphere --tolerance 0.2 --solution " +
+          quoted(dir / "s.vtp") + " --width 16 --height 12 -o " + quoted(dir / "lp.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(rad::read_exr(dir / "lp.exr").width, 16);
   EXPECT_TRUE(fs::exists(dir / "lp.png"));
   const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "lp.stats.json"));
-  for (const char* key : {"seconds", "emitting_per_pixel", "emitting_fraction_mean", "projected_per_pixel", "bound",
-                          "faces", "octree_leaves", "pixels_gathered"}) {
+  for (const char* key :
+       {"seconds", "emitting_per_pixel", "emitting_fraction_mean", "projected_per_pixel", "bound",
+        "faces", "octree_leaves", "pixels_gathered"}) {
     EXPECT_TRUE(stats.contains(key)) << key;
   }
   EXPECT_EQ(stats["tolerance"].get<double>(), 0.2);
@@ -296,7 +302,8 @@ TEST(Cli, LocalPassRenderWritesImageStatsAndProbeFillsTheBound) {
   EXPECT_NE(r.err.find("needs --solution"), std::string::npos) << r.err;
   // probe with a solution: exact at tolerance 0 (bound 0), a bound >= 0 otherwise, within it.
   std::ofstream(dir / "p.csv") << "0,0,0,0,1,0\n0.3,0,0.2,0,1,0\n";
-  const std::string probe = "probe " + scene + " --points " + quoted(dir / "p.csv") + " --solution " + quoted(dir / "s.vtp");
+  const std::string probe = "probe " + scene + " --points " + quoted(dir / "p.csv") +
+                            " --solution " + quoted(dir / "s.vtp");
   const Result exact = run(probe), bounded = run(probe + " --tolerance 0.3");
   ASSERT_EQ(exact.exit_code, 0) << exact.err;
   ASSERT_EQ(bounded.exit_code, 0) << bounded.err;
@@ -307,7 +314,8 @@ TEST(Cli, LocalPassRenderWritesImageStatsAndProbeFillsTheBound) {
   for (size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(e[i][9], 0.0);
     EXPECT_GE(b[i][9], 0.0);
-    for (int c = 6; c < 9; ++c) EXPECT_LE(std::abs(b[i][c] - e[i][c]), b[i][9] * (1 + 1e-9) + 1e-12) << "row " << i;
+    for (int c = 6; c < 9; ++c)
+      EXPECT_LE(std::abs(b[i][c] - e[i][c]), b[i][9] * (1 + 1e-9) + 1e-12) << "row " << i;
   }
 }
 
@@ -320,7 +328,8 @@ TEST(Cli, CompareReportsErrorsAndRefusesMissingOrMismatchedImages) {
   rad::write_exr(dir / "a.exr", a);
   rad::write_exr(dir / "b.exr", b);
   rad::write_exr(dir / "small.exr", small);
-  Result r = run("compare " + quoted(dir / "a.exr") + " " + quoted(dir / "b.exr") + " -o " + quoted(dir / "map.exr"));
+  Result r = run("compare " + quoted(dir / "a.exr") + " " + quoted(dir / "b.exr") + " -o " +
+                 quoted(dir / "map.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("max relative error: 0.5\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("mean relative error: 0.0625\n"), std::string::npos) << r.out;
@@ -331,7 +340,8 @@ TEST(Cli, CompareReportsErrorsAndRefusesMissingOrMismatchedImages) {
   r = run("compare " + quoted(dir / "missing.exr") + " " + quoted(dir / "b.exr"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("missing.exr"), std::string::npos) << r.err;
-  r = run("compare " + quoted(dir / "small.exr") + " " + quoted(dir / "b.exr") + " -o " + quoted(dir / "m2.exr"));
+  r = run("compare " + quoted(dir / "small.exr") + " " + quoted(dir / "b.exr") + " -o " +
+          quoted(dir / "m2.exr"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("small.exr: 2x2 pixels, but the reference"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "m2.exr"));
@@ -348,8 +358,9 @@ TEST(Cli, SweepAndExportWriteTheirFiles) {
   EXPECT_NE(r.err.find("sweep: hemisphere T=0.3: "), std::string::npos) << r.err;
   const std::string csv = slurp(dir / "sweep/results.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4) << csv;  // header + 3 rows
-  for (const char* file : {"reference.exr", "error_vs_tolerance.png", "time_vs_tolerance.png", "error_vs_time.png",
-                           "images/hemisphere_T0.3.exr", "error_maps/montecarlo_N4.png"}) {
+  for (const char* file :
+       {"reference.exr", "error_vs_tolerance.png", "time_vs_tolerance.png", "error_vs_time.png",
+        "images/hemisphere_T0.3.exr", "error_maps/montecarlo_N4.png"}) {
     EXPECT_TRUE(fs::exists(dir / "sweep" / file)) << file;
   }
 
@@ -376,13 +387,14 @@ TEST(Cli, SweepAndExportWriteTheirFiles) {
   r = run("sweep " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "sweep3") +
           " --width 9 --height 6 --reference " + quoted(dir / "sweep/reference.exr"));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("reference.exr: 8x6 pixels, but the sweep renders 9x6"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("reference.exr: 8x6 pixels, but the sweep renders 9x6"), std::string::npos)
+      << r.err;
 
   r = run("render " + scene + " --solution " + quoted(dir / "s.vtp") + " --width 8 --height 6 -o " +
           quoted(dir / "lp.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run("export " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "export") + " --stats " +
-          quoted(dir / "lp.stats.json") + " --width 64 --height 48");
+  r = run("export " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "export") +
+          " --stats " + quoted(dir / "lp.stats.json") + " --width 64 --height 48");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* file : {"patch_mesh.vtp", "octree.vtu", "pixel_stats.vti", "patch_mesh.png"}) {
     EXPECT_TRUE(fs::exists(dir / "export" / file)) << file;
@@ -413,8 +425,8 @@ TEST(Cli, SweepAndExportWriteTheirFiles) {
   }
   // A stats file that is not one names itself, and nothing is written.
   std::ofstream(dir / "bad.json") << "{\"seconds\": 1}";
-  r = run("export " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "export2") + " --stats " +
-          quoted(dir / "bad.json"));
+  r = run("export " + scene + " -s " + quoted(dir / "s.vtp") + " -o " + quoted(dir / "export2") +
+          " --stats " + quoted(dir / "bad.json"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("bad.json: no \"pixels_file\""), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "export2"));

@@ -1,17 +1,18 @@
 // Error maps and charts: the relative error statistics against values worked by hand, and the
 // PNGs (charts, heat maps) read back with VTK's reader: size and more than one colour.
+#include "experiments/error_map.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
+#include "formats/image_io.h"
 #include "scene/error.h"
 #include "tests/scratch_dir.h"
 #include "tests/viz/png_inspect.h"
 #include "viz/charts.h"
-#include "experiments/error_map.h"
 #include "viz/error_heat_map.h"
-#include "formats/image_io.h"
 
 namespace rad {
 namespace {

@@ -1,7 +1,9 @@
-// The sweep (experiments/sweep.h) on the Cornell box at 12x12: results.csv has the documented columns;
-// its error columns match errors recomputed here from the images it wrote; tolerance 0 has no
-// error; no exact pixel leaves its certified bound (counted here independently); the charts and
+// The sweep (experiments/sweep.h) on the Cornell box at 12x12: results.csv has the documented
+// columns; its error columns match errors recomputed here from the images it wrote; tolerance 0 has
+// no error; no exact pixel leaves its certified bound (counted here independently); the charts and
 // heat maps are PNGs of the expected size with more than one colour.
+#include "experiments/sweep.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,14 +12,12 @@
 #include <map>
 #include <sstream>
 
+#include "formats/image_io.h"
 #include "localpass/local_pass.h"
 #include "scene/ray_caster.h"
 #include "tests/coarse_solution.h"
 #include "tests/viz/png_inspect.h"
 #include "viz/charts.h"
-#include "formats/image_io.h"
-#include "experiments/sweep.h"
-
 #include "viz/sweep_figures.h"
 
 namespace rad {
@@ -25,9 +25,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kColumns{"method",         "tolerance",     "samples",       "seconds",
-                                        "projected_mean", "projected_max", "error_max",     "error_mean",
-                                        "error_rms",      "bound_violations", "error_over_bound_max", "pixels",
+const std::vector<std::string> kColumns{"method",
+                                        "tolerance",
+                                        "samples",
+                                        "seconds",
+                                        "projected_mean",
+                                        "projected_max",
+                                        "error_max",
+                                        "error_mean",
+                                        "error_rms",
+                                        "bound_violations",
+                                        "error_over_bound_max",
+                                        "pixels",
                                         "image"};
 
 std::vector<std::string> split(const std::string& line) {
@@ -40,7 +49,8 @@ std::vector<std::string> split(const std::string& line) {
 }
 
 /// results.csv as rows of column name -> text.
-std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file, std::vector<std::string>* header) {
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file,
+                                                         std::vector<std::string>* header) {
   std::ifstream in(file);
   std::string line;
   std::getline(in, line);
@@ -66,10 +76,12 @@ Recomputed recompute(const fs::path& image_file, const fs::path& reference_file)
   Recomputed r;
   double sum = 0, squares = 0;
   for (size_t i = 0; i < image.pixels.size(); ++i) {
-    const double ref = std::max({reference.pixels[i].x(), reference.pixels[i].y(), reference.pixels[i].z()});
+    const double ref =
+        std::max({reference.pixels[i].x(), reference.pixels[i].y(), reference.pixels[i].z()});
     if (!(ref > 0)) continue;
     double e = 0;
-    for (int c = 0; c < 3; ++c) e = std::max(e, std::abs(image.pixels[i][c] - reference.pixels[i][c]));
+    for (int c = 0; c < 3; ++c)
+      e = std::max(e, std::abs(image.pixels[i][c] - reference.pixels[i][c]));
     e /= ref;
     r.max = std::max(r.max, e);
     sum += e;
@@ -94,7 +106,8 @@ class SweepOnCornell : public ::testing::Test {
     settings.methods = {Method::hemisphere, Method::vertex, Method::montecarlo};
     settings.tolerances = {0, 0.1, 0.4};
     settings.samples = {4, 16};
-    const SweepResult sweep = run_sweep(cornell.scene, cornell.faces, Camera(spec), settings, folder_);
+    const SweepResult sweep =
+        run_sweep(cornell.scene, cornell.faces, Camera(spec), settings, folder_);
     write_sweep_figures(folder_, sweep);
     rows_ = sweep.rows;
   }
@@ -143,7 +156,8 @@ TEST_F(SweepOnCornell, ToleranceZeroHasNoErrorAndNoPixelLeavesItsBound) {
   const Camera camera(spec);
   const RayCaster caster(cornell.scene);
   const LocalPass reference_pass(cornell.scene, cornell.faces, Method::hemisphere);
-  const IrradianceImage reference = render_local_pass(cornell.scene, caster, camera, reference_pass, 0);
+  const IrradianceImage reference =
+      render_local_pass(cornell.scene, caster, camera, reference_pass, 0);
   for (const SweepRow& row : rows_) {
     if (!row.exact()) {
       EXPECT_EQ(row.violations, -1);
@@ -157,10 +171,12 @@ TEST_F(SweepOnCornell, ToleranceZeroHasNoErrorAndNoPixelLeavesItsBound) {
     EXPECT_LE(row.error.max, row.tolerance / (1 - row.tolerance) + 1e-9) << row.label();
     // Count violations here, from a render of our own (bitwise the same image).
     const LocalPass pass(cornell.scene, cornell.faces, row.method);
-    const IrradianceImage image = render_local_pass(cornell.scene, caster, camera, pass, row.tolerance);
+    const IrradianceImage image =
+        render_local_pass(cornell.scene, caster, camera, pass, row.tolerance);
     long outside = 0;
     for (size_t i = 0; i < image.radiosity.pixels.size(); ++i) {
-      const Rgb excess = (image.radiosity.pixels[i] - reference.radiosity.pixels[i]).cwiseAbs() - image.bound.pixels[i];
+      const Rgb excess = (image.radiosity.pixels[i] - reference.radiosity.pixels[i]).cwiseAbs() -
+                         image.bound.pixels[i];
       if (excess.maxCoeff() > 1e-8 * reference.radiosity.pixels[i].maxCoeff()) ++outside;
     }
     EXPECT_EQ(outside, 0) << row.label();
@@ -190,7 +206,8 @@ TEST(SweepCompare, CountsPixelsOutsideTheirBound) {
 }
 
 TEST_F(SweepOnCornell, ChartsAndHeatMapsArePngsOfTheirSizeWithMoreThanOneColour) {
-  for (const char* chart : {"error_vs_tolerance.png", "time_vs_tolerance.png", "error_vs_time.png"}) {
+  for (const char* chart :
+       {"error_vs_tolerance.png", "time_vs_tolerance.png", "error_vs_time.png"}) {
     const test::PngSummary png = test::inspect_png(folder_ / chart);
     EXPECT_EQ(png.width, LineChart{}.width) << chart;
     EXPECT_EQ(png.height, LineChart{}.height) << chart;
@@ -205,7 +222,8 @@ TEST_F(SweepOnCornell, ChartsAndHeatMapsArePngsOfTheirSizeWithMoreThanOneColour)
     EXPECT_EQ(png.height, height) << row.label();
     EXPECT_GT(png.colours, 1u) << row.label();
     EXPECT_EQ(read_exr(folder_ / "error_maps" / (row.slug() + ".exr")).width, 12) << row.label();
-    EXPECT_EQ(test::inspect_png(folder_ / "images" / (row.slug() + ".png")).width, 12) << row.label();
+    EXPECT_EQ(test::inspect_png(folder_ / "images" / (row.slug() + ".png")).width, 12)
+        << row.label();
   }
 }
 

@@ -8,16 +8,17 @@
 #include <fstream>
 #include <random>
 
-#include "scene/error.h"
 #include "formats/atomic_file.h"
+#include "scene/error.h"
 
 namespace rad {
 namespace {
 
 std::filesystem::path temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("rad_viz_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                    "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      ("rad_viz_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+       ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::remove_all(dir);  // a fresh folder per test, whatever an earlier run left
   std::filesystem::create_directories(dir);
   return dir;
@@ -40,7 +41,8 @@ TEST(ImageIo, ExrRoundTripKeepsFloatValues) {
   ASSERT_EQ(back.height, 23);
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
-      ASSERT_EQ(back.pixels[i][c], static_cast<double>(static_cast<float>(image.pixels[i][c]))) << i;
+      ASSERT_EQ(back.pixels[i][c], static_cast<double>(static_cast<float>(image.pixels[i][c])))
+          << i;
     }
   }
 }
@@ -62,15 +64,15 @@ TEST(ImageIo, SrgbEncodingMatchesTheStandard) {
   EXPECT_EQ(to_srgb8(1.0, 0), 255);
   EXPECT_EQ(to_srgb8(7.0, 0), 255);  // clamped
   EXPECT_EQ(to_srgb8(-1.0, 0), 0);
-  EXPECT_EQ(to_srgb8(0.5, 0), 188);  // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354
+  EXPECT_EQ(to_srgb8(0.5, 0), 188);   // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354
   EXPECT_EQ(to_srgb8(0.25, 1), 188);  // one stop up
   EXPECT_EQ(to_srgb8(0.002, 0), 7);   // linear segment: 12.92 * 0.002 * 255 = 6.6
 }
 
 TEST(ImageIo, PngPreviewIsTopDownAndEncoded) {
   Image image(4, 3);
-  image.at(0, 0) = Rgb(1, 0, 0);     // top-left red
-  image.at(3, 2) = Rgb(0, 0, 0.5);   // bottom-right mid blue
+  image.at(0, 0) = Rgb(1, 0, 0);    // top-left red
+  image.at(3, 2) = Rgb(0, 0, 0.5);  // bottom-right mid blue
   const auto file = temp_dir() / "preview.png";
   write_png_preview(file, image);
   vtkNew<vtkPNGReader> reader;
@@ -103,7 +105,8 @@ TEST(AtomicFile, LeavesTargetUntouchedUntilCommit) {
   std::ifstream in(target);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(content, "precious");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "temp file left behind";
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1)
+      << "temp file left behind";
   {
     AtomicFile out(target);
     std::ofstream(out.temp_path()) << "new";
@@ -118,17 +121,19 @@ TEST(AtomicFile, WriteTextFileReplacesOnlyOnSuccess) {
   const auto dir = temp_dir();
   const auto target = dir / "out.csv";
   std::ofstream(target) << "precious";
-  EXPECT_THROW(write_text_file(target, [](std::ostream& out) {
-                 out << "half";
-                 throw Error("writer failed");
-               }),
+  EXPECT_THROW(write_text_file(target,
+                               [](std::ostream& out) {
+                                 out << "half";
+                                 throw Error("writer failed");
+                               }),
                Error);
   const auto read = [&] {
     std::ifstream in(target);
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   };
   EXPECT_EQ(read(), "precious");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1) << "temp file left behind";
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1)
+      << "temp file left behind";
   write_text_file(target, [](std::ostream& out) { out << "new\n"; });
   EXPECT_EQ(read(), "new\n");
 }

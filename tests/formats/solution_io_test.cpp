@@ -33,7 +33,8 @@ Solution small_solution(const Scene& scene) {
 }
 
 TEST(SolutionIo, RoundTripIsBitExact) {
-  const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/light-over-floor/scene.json");
+  const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/light-over-floor/scene.json");
   const Solution original = small_solution(scene);
   ASSERT_GT(original.stats.refined, 0) << "the round trip must cover refined (T-junction) meshes";
   const auto file = scratch("round.vtp");
@@ -77,7 +78,8 @@ TEST(SolutionIo, RoundTripIsBitExact) {
 }
 
 TEST(SolutionIo, OpensWithVtksOwnReaderWithTheDocumentedArrays) {
-  const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/light-over-floor/scene.json");
+  const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/light-over-floor/scene.json");
   const Solution s = small_solution(scene);
   const auto file = scratch("arrays.vtp");
   write_solution(file, s, scene);
@@ -86,7 +88,8 @@ TEST(SolutionIo, OpensWithVtksOwnReaderWithTheDocumentedArrays) {
   reader->Update();
   vtkPolyData* poly = reader->GetOutput();
   EXPECT_EQ(poly->GetNumberOfCells(), static_cast<vtkIdType>(s.leaves().size()));
-  for (const char* name : {"radiosity", "emission", "reflectance", "parent_polygon", "patch", "level", "area"}) {
+  for (const char* name :
+       {"radiosity", "emission", "reflectance", "parent_polygon", "patch", "level", "area"}) {
     EXPECT_NE(poly->GetCellData()->GetArray(name), nullptr) << name;
   }
 }

@@ -27,7 +27,8 @@ Clipped clip_z(const std::vector<Vec3>& loop) {
 }
 
 TEST(Clip, StraddlingSquareKeepsTheUpperHalfWithTheCutLabelled) {
-  // A unit square in the xz-plane from z = -1 to z = 1: edges 0 (bottom), 1 (right), 2 (top), 3 (left).
+  // A unit square in the xz-plane from z = -1 to z = 1: edges 0 (bottom), 1 (right), 2 (top), 3
+  // (left).
   const std::vector<Vec3> square{{0, 0, -1}, {1, 0, -1}, {1, 0, 1}, {0, 0, 1}};
   const Clipped c = clip_z(square);
   ASSERT_EQ(c.points.size(), 4u);

@@ -30,10 +30,13 @@ TEST(FormFactor, MatchesHowellB3ParallelRectangleThroughCorner) {
 TEST(FormFactor, OffsetRectangleBySignedSuperpositionOfCorners) {
   // Rectangle [x0, x1] x [y0, y1] at height c = four corner rectangles with signs.
   const double x0 = 0.3, x1 = 1.7, y0 = -0.4, y1 = 0.9, c = 0.8;
-  auto corner = [&](double x, double y) { return std::copysign(1.0, x) * std::copysign(1.0, y) * howell_b3(std::abs(x), std::abs(y), c); };
+  auto corner = [&](double x, double y) {
+    return std::copysign(1.0, x) * std::copysign(1.0, y) * howell_b3(std::abs(x), std::abs(y), c);
+  };
   const double expected = corner(x1, y1) - corner(x0, y1) - corner(x1, y0) + corner(x0, y0);
   const std::vector<Vec3> rect{{x0, y0, c}, {x1, y0, c}, {x1, y1, c}, {x0, y1, c}};
-  EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), expected, 1e-12 * expected);
+  EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), expected,
+              1e-12 * expected);
 }
 
 TEST(FormFactor, MatchesHowellPerpendicularRectangle) {
@@ -54,9 +57,11 @@ TEST(FormFactor, MatchesDiskOnAxisInTheLimitOfManySides) {
     // Circumradius giving the n-gon the disk's area (r = 1): (n/2) R^2 sin(2 pi / n) = pi.
     const double R = std::sqrt(2 * kPi / (n * std::sin(2 * kPi / n)));
     std::vector<Vec3> ngon;
-    for (int i = 0; i < n; ++i) ngon.emplace_back(R * std::cos(2 * kPi * i / n), R * std::sin(2 * kPi * i / n), h);
+    for (int i = 0; i < n; ++i)
+      ngon.emplace_back(R * std::cos(2 * kPi * i / n), R * std::sin(2 * kPi * i / n), h);
     const double disk = 1 / (1 + h * h);
-    EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), ngon), disk, 1e-6 * disk) << "h=" << h;
+    EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), ngon), disk, 1e-6 * disk)
+        << "h=" << h;
   }
 }
 
@@ -78,7 +83,8 @@ TEST(FormFactor, ClipsPolygonsCrossingTheTangentPlane) {
   // A vertical square straddling the tangent plane: only its upper half counts, and the upper
   // half alone is Howell's perpendicular case.
   const std::vector<Vec3> straddling{{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}};
-  EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), straddling), 0.055734197002554, 1e-12);
+  EXPECT_NEAR(point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), straddling), 0.055734197002554,
+              1e-12);
   const auto clipped = clip_to_halfspace(straddling, Vec3::Zero(), Vec3::UnitZ());
   ASSERT_EQ(clipped.size(), 4u);
   for (const Vec3& p : clipped) EXPECT_GE(p.z(), 0.0);
@@ -86,8 +92,8 @@ TEST(FormFactor, ClipsPolygonsCrossingTheTangentPlane) {
 
 /// Seeded Monte Carlo estimate: cosine-weighted directions from x, counting those that hit the
 /// polygon (plane hit + 2D point-in-polygon). Independent of the contour formula.
-double monte_carlo_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon, int samples,
-                               uint64_t seed) {
+double monte_carlo_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon,
+                               int samples, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   const PlaneFrame local(x, n);
@@ -98,7 +104,8 @@ double monte_carlo_form_factor(const Vec3& x, const Vec3& n, const std::vector<V
   int hits = 0;
   for (int i = 0; i < samples; ++i) {
     const double r = std::sqrt(u(rng)), phi = 2 * kPi * u(rng);
-    const Vec3 d = r * std::cos(phi) * local.u + r * std::sin(phi) * local.v + std::sqrt(1 - r * r) * n;
+    const Vec3 d =
+        r * std::cos(phi) * local.u + r * std::sin(phi) * local.v + std::sqrt(1 - r * r) * n;
     const double denom = pn.dot(d);
     if (denom == 0) continue;
     const double t = pn.dot(polygon[0] - x) / denom;
@@ -120,13 +127,16 @@ TEST(FormFactor, AgreesWithMonteCarloOnConcaveAndStraddlingPolygons) {
     std::vector<Vec3> star;
     for (int k = 0; k < 10; ++k) {
       const double radius = (k % 2 ? 0.35 : 1.0) * (0.6 + 0.4 * std::abs(u(rng)));
-      star.push_back(centre + radius * (std::cos(2 * kPi * k / 10) * f.u + std::sin(2 * kPi * k / 10) * f.v));
+      star.push_back(
+          centre + radius * (std::cos(2 * kPi * k / 10) * f.u + std::sin(2 * kPi * k / 10) * f.v));
     }
     const double exact = point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), star);
     const int samples = 1000000;
-    const double mc = monte_carlo_form_factor(Vec3::Zero(), Vec3::UnitZ(), star, samples, 1000 + trial);
+    const double mc =
+        monte_carlo_form_factor(Vec3::Zero(), Vec3::UnitZ(), star, samples, 1000 + trial);
     const double sigma = std::sqrt(std::max(mc * (1 - mc), 1e-12) / samples);
-    EXPECT_NEAR(exact, mc, 4 * sigma + 1e-12) << "trial " << trial << ": exact " << exact << " mc " << mc;
+    EXPECT_NEAR(exact, mc, 4 * sigma + 1e-12)
+        << "trial " << trial << ": exact " << exact << " mc " << mc;
   }
 }
 

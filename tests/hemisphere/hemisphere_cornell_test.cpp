@@ -7,10 +7,10 @@
 #include <cmath>
 #include <random>
 
-#include "hemisphere/hemisphere_gatherer.h"
-#include "scene/polygon_faces.h"
 #include "geometry/clip.h"
 #include "geometry/lambert.h"
+#include "hemisphere/hemisphere_gatherer.h"
+#include "scene/polygon_faces.h"
 #include "scene/scene_loader.h"
 #include "tests/surface_points.h"
 
@@ -18,7 +18,8 @@ namespace rad {
 namespace {
 
 const Scene& cornell() {
-  static const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
+  static const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
   return scene;
 }
 
@@ -31,7 +32,9 @@ TEST(HemisphereCornell, HundredThousandSurfacePointsGiveFiniteNonNegativeResults
   std::vector<double> areas;
   for (const Polygon& p : scene.polygons) areas.push_back(p.area);
   std::discrete_distribution<int> pick(areas.begin(), areas.end());
-  struct Point { Vec3 x, n; };
+  struct Point {
+    Vec3 x, n;
+  };
   std::vector<Point> points;
   for (int i = 0; i < 100000; ++i) {
     const Polygon& p = scene.polygons[pick(rng)];
@@ -41,8 +44,8 @@ TEST(HemisphereCornell, HundredThousandSurfacePointsGiveFiniteNonNegativeResults
   std::atomic<int> bad{0};
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
     const HemisphereGather r = gatherer.gather(points[i].x, points[i].n);
-    const bool ok = r.irradiance.allFinite() && r.irradiance.minCoeff() >= 0 && std::isfinite(r.covered) &&
-                    r.covered >= 0 && r.covered <= 1 + 1e-12;
+    const bool ok = r.irradiance.allFinite() && r.irradiance.minCoeff() >= 0 &&
+                    std::isfinite(r.covered) && r.covered >= 0 && r.covered <= 1 + 1e-12;
     if (!ok && bad.fetch_add(1) < 5) {
       ADD_FAILURE() << "x=" << points[i].x.transpose() << " n=" << points[i].n.transpose()
                     << " E=" << r.irradiance.transpose() << " covered=" << r.covered;
@@ -101,13 +104,15 @@ Poly2 counter_clockwise(Poly2 p) {
 /// to the light passes) projected from x onto the light's plane is a convex shadow; the light
 /// rectangle minus the shadows is carved in 2D; Lambert's formula in 3D on the pieces.
 /// `shadowing` counts the faces that hid some of the light.
-double direct_floor_irradiance(const Scene& scene, const Vec3& x, double h, bool with_blocks, int* shadowing) {
+double direct_floor_irradiance(const Scene& scene, const Vec3& x, double h, bool with_blocks,
+                               int* shadowing) {
   constexpr double kLight = 548.8;
   std::vector<Poly2> visible{{{213, 227}, {343, 227}, {343, 332}, {213, 332}}};
   *shadowing = 0;
   for (size_t i = 0; with_blocks && i < scene.polygons.size(); ++i) {
     if (scene.objects[scene.polygons[i].object].name.find("block") == std::string::npos) continue;
-    const auto clipped = clip_to_halfspace(scene.polygons[i].vertices, Vec3(0, h, 0), Vec3::UnitY());
+    const auto clipped =
+        clip_to_halfspace(scene.polygons[i].vertices, Vec3(0, h, 0), Vec3::UnitY());
     if (clipped.size() < 3) continue;
     Poly2 shadow;
     for (const Vec3& p : clipped) {
@@ -170,7 +175,8 @@ TEST(HemisphereCornell, FloorIrradianceFromTheLightMatchesTheIndependentConstruc
   ASSERT_GT(scale, 0);
 
   // Floor points at least 20 mm outside both blocks' footprints.
-  const auto short_block = block_sides(scene, "short block"), tall_block = block_sides(scene, "tall block");
+  const auto short_block = block_sides(scene, "short block"),
+             tall_block = block_sides(scene, "tall block");
   ASSERT_EQ(short_block.size(), 4u);
   ASSERT_EQ(tall_block.size(), 4u);
   std::mt19937_64 rng(9);
@@ -180,7 +186,8 @@ TEST(HemisphereCornell, FloorIrradianceFromTheLightMatchesTheIndependentConstruc
   for (int attempt = 0; compared < 30 && attempt < 10000; ++attempt) {
     const Vec3 x(ux(rng), 0, uz(rng));
     bool in_short = false, in_tall = false;
-    const double gap = std::min(footprint_gap(short_block, x, &in_short), footprint_gap(tall_block, x, &in_tall));
+    const double gap =
+        std::min(footprint_gap(short_block, x, &in_short), footprint_gap(tall_block, x, &in_tall));
     if (in_short || in_tall || gap < 20) continue;
     // Segments from x to the light rise at least 548.8 / 700 per unit of run, so none passes
     // below h within reach of a block at least `gap` away.
@@ -189,7 +196,8 @@ TEST(HemisphereCornell, FloorIrradianceFromTheLightMatchesTheIndependentConstruc
     const double expected = direct_floor_irradiance(scene, x, h, true, &shadowing);
     const double unblocked = direct_floor_irradiance(scene, x, h, false, &unused);
     const double got = gatherer.gather(x, Vec3::UnitY()).irradiance.x();
-    EXPECT_NEAR(got, expected, 1e-9 * scale) << "x = " << x.transpose() << " (" << shadowing << " shadowing faces)";
+    EXPECT_NEAR(got, expected, 1e-9 * scale)
+        << "x = " << x.transpose() << " (" << shadowing << " shadowing faces)";
     worst = std::max(worst, std::abs(got - expected) / scale);
     ++compared;
     if (expected > 1e-9 * scale && expected < unblocked * (1 - 1e-9)) ++penumbra;

@@ -1,7 +1,6 @@
 // The hemisphere gatherer against independent computations: closed forms (Howell), seeded Monte
 // Carlo, exact values built by hand, and one test per degenerate class of DESIGN.md §4.
 #include "hemisphere/hemisphere_gatherer.h"
-#include "scene/polygon_faces.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +10,7 @@
 #include <random>
 
 #include "geometry/lambert.h"
+#include "scene/polygon_faces.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 #include "tests/closed_forms.h"
@@ -25,7 +25,9 @@ using test::SceneBuilder;
 using test::howell_b3;
 constexpr auto rect_ff = test::howell_rectangle;
 double irradiance(const Scene& scene, const Vec3& x, const Vec3& n) {
-  return HemisphereGatherer(faces_from_polygons(scene), scene.tolerance()).gather(x, n).irradiance.x();
+  return HemisphereGatherer(faces_from_polygons(scene), scene.tolerance())
+      .gather(x, n)
+      .irradiance.x();
 }
 
 // ---------------------------------------------------------------- closed forms to 1e-12
@@ -34,7 +36,8 @@ TEST(HemisphereGather, MatchesHowellB3AndOffsetRectangles) {
   for (const auto& c : test::kHowellB3) {
     SceneBuilder b;
     b.rectangle(0, c.a, 0, c.b, c.c, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
-    EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F, 1e-12 * c.F) << c.a << " " << c.b << " " << c.c;
+    EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F, 1e-12 * c.F)
+        << c.a << " " << c.b << " " << c.c;
   }
   SceneBuilder b;
   b.rectangle(-0.7, 1.3, 0.2, 2.9, 1.5, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
@@ -62,7 +65,8 @@ TEST(HemisphereGather, Matches1024GonAgainstDiskCorrectedForAreaDeficit) {
     const double R = std::sqrt(2 * kPi / (n * std::sin(2 * kPi / n)));  // area pi
     SceneBuilder b;
     std::vector<Vec3> ngon;
-    for (int i = n - 1; i >= 0; --i) ngon.emplace_back(R * std::cos(2 * kPi * i / n), R * std::sin(2 * kPi * i / n), h);
+    for (int i = n - 1; i >= 0; --i)
+      ngon.emplace_back(R * std::cos(2 * kPi * i / n), R * std::sin(2 * kPi * i / n), h);
     b.polygon(ngon, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
     const double disk = 1 / (1 + h * h);
     const double ff = irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ());
@@ -76,14 +80,16 @@ TEST(HemisphereGather, Matches1024GonAgainstDiskCorrectedForAreaDeficit) {
 
 /// Seeded Monte Carlo: cosine-weighted rays from x, closest hit by brute force over polygons
 /// in double precision; a ray scores the exitance of an emitter whose front it hits.
-double monte_carlo(const Scene& scene, const Vec3& x, const Vec3& n, int samples, uint64_t seed, double* sigma) {
+double monte_carlo(const Scene& scene, const Vec3& x, const Vec3& n, int samples, uint64_t seed,
+                   double* sigma) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   const PlaneFrame frame(x, n);
   double sum = 0, sum2 = 0;
   for (int i = 0; i < samples; ++i) {
     const double r = std::sqrt(u(rng)), phi = 2 * kPi * u(rng);
-    const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - r * r) * n;
+    const Vec3 d =
+        r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - r * r) * n;
     double best = std::numeric_limits<double>::infinity();
     double value = 0;
     for (const Polygon& p : scene.polygons) {
@@ -121,15 +127,19 @@ TEST(HemisphereGather, AgreesWithMonteCarloInOccludedScenes) {
       const Vec3 normal = Vec3(0.4 * g(rng), 0.4 * g(rng), 1).normalized();
       const PlaneFrame f(c, normal);
       std::vector<Vec3> quad;
-      for (int q = 0; q < 4; ++q) quad.push_back(c + 0.35 * (std::cos(kPi * q / 2 + k) * f.u + std::sin(kPi * q / 2 + k) * f.v));
+      for (int q = 0; q < 4; ++q)
+        quad.push_back(c +
+                       0.35 * (std::cos(kPi * q / 2 + k) * f.u + std::sin(kPi * q / 2 + k) * f.v));
       b.polygon(quad, dark);
     }
     const Vec3 x(0.1 * u(rng), 0.1 * u(rng), 0);
     const double exact = irradiance(b.scene(), x, Vec3::UnitZ());
     double sigma = 0;
     const double mc = monte_carlo(b.scene(), x, Vec3::UnitZ(), 1000000, 500 + trial, &sigma);
-    EXPECT_NEAR(exact, mc, 4 * sigma) << "trial " << trial << ": exact " << exact << " mc " << mc << " sigma " << sigma;
-    EXPECT_GT(std::abs(exact - 2 * rect_ff(-1.5, 1.5, -1 - x.y(), 1.2 - x.y(), 2.0)), 0.01) << "trial " << trial << " is occluded";
+    EXPECT_NEAR(exact, mc, 4 * sigma)
+        << "trial " << trial << ": exact " << exact << " mc " << mc << " sigma " << sigma;
+    EXPECT_GT(std::abs(exact - 2 * rect_ff(-1.5, 1.5, -1 - x.y(), 1.2 - x.y(), 2.0)), 0.01)
+        << "trial " << trial << " is occluded";
   }
 }
 
@@ -146,11 +156,15 @@ TEST(HemisphereGather, ParallelBlockerMatchesTheHandClippedShadow) {
     SceneBuilder b;
     b.rectangle(-1, 1, -1, 1, 2, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
     b.rectangle(a0, a1, b0, b1, 1, true, b.material("dark", Rgb::Zero(), Rgb::Zero()));
-    const double s0 = std::clamp(x.x() + 2 * (a0 - x.x()), -1.0, 1.0), s1 = std::clamp(x.x() + 2 * (a1 - x.x()), -1.0, 1.0);
-    const double t0 = std::clamp(x.y() + 2 * (b0 - x.y()), -1.0, 1.0), t1 = std::clamp(x.y() + 2 * (b1 - x.y()), -1.0, 1.0);
+    const double s0 = std::clamp(x.x() + 2 * (a0 - x.x()), -1.0, 1.0),
+                 s1 = std::clamp(x.x() + 2 * (a1 - x.x()), -1.0, 1.0);
+    const double t0 = std::clamp(x.y() + 2 * (b0 - x.y()), -1.0, 1.0),
+                 t1 = std::clamp(x.y() + 2 * (b1 - x.y()), -1.0, 1.0);
     const double source = rect_ff(-1 - x.x(), 1 - x.x(), -1 - x.y(), 1 - x.y(), 2);
-    const double shadow = (s1 > s0 && t1 > t0) ? rect_ff(s0 - x.x(), s1 - x.x(), t0 - x.y(), t1 - x.y(), 2) : 0;
-    EXPECT_NEAR(irradiance(b.scene(), x, Vec3::UnitZ()), source - shadow, 1e-12) << "x = " << x.transpose();
+    const double shadow =
+        (s1 > s0 && t1 > t0) ? rect_ff(s0 - x.x(), s1 - x.x(), t0 - x.y(), t1 - x.y(), 2) : 0;
+    EXPECT_NEAR(irradiance(b.scene(), x, Vec3::UnitZ()), source - shadow, 1e-12)
+        << "x = " << x.transpose();
   }
 }
 
@@ -159,7 +173,8 @@ TEST(HemisphereGather, ParallelBlockerMatchesTheHandClippedShadow) {
 TEST(HemisphereGatherDegenerate, PolygonCrossingTheTangentPlane) {
   SceneBuilder b;
   const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
-  b.polygon({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}}, lamp);  // faces -y; half below the horizon
+  b.polygon({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}},
+            lamp);  // faces -y; half below the horizon
   EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), 0.055734197002554, 1e-13);
 }
 
@@ -183,7 +198,8 @@ TEST(HemisphereGatherDegenerate, EdgeOnPolygonBlocksNothing) {
   SceneBuilder b;
   b.rectangle(-1, 1, -1, 1, 1, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
   // A wall in the plane y = 0, which contains x: seen exactly edge-on.
-  b.polygon({{-0.5, 0, 0.2}, {0.5, 0, 0.2}, {0.5, 0, 0.8}, {-0.5, 0, 0.8}}, b.material("dark", Rgb::Zero(), Rgb::Zero()));
+  b.polygon({{-0.5, 0, 0.2}, {0.5, 0, 0.2}, {0.5, 0, 0.8}, {-0.5, 0, 0.8}},
+            b.material("dark", Rgb::Zero(), Rgb::Zero()));
   EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), rect_ff(-1, 1, -1, 1, 1), 1e-13);
 }
 
@@ -195,7 +211,8 @@ TEST(HemisphereGatherDegenerate, CoincidentVerticesChangeNothing) {
   p.vertices.insert(p.vertices.begin() + 2, p.vertices[2]);  // as a caller might build it
   p.vertices.push_back(p.vertices[0]);
   dup.scene().polygons.push_back(p);
-  EXPECT_NEAR(irradiance(dup.scene(), Vec3(0.2, 0.1, 0), Vec3::UnitZ()), irradiance(clean.scene(), Vec3(0.2, 0.1, 0), Vec3::UnitZ()), 1e-14);
+  EXPECT_NEAR(irradiance(dup.scene(), Vec3(0.2, 0.1, 0), Vec3::UnitZ()),
+              irradiance(clean.scene(), Vec3(0.2, 0.1, 0), Vec3::UnitZ()), 1e-14);
 }
 
 TEST(HemisphereGatherDegenerate, SharedEdgesAndTJunctionsTileExactly) {
@@ -213,20 +230,25 @@ TEST(HemisphereGatherDegenerate, SharedEdgesAndTJunctionsTileExactly) {
 
 TEST(HemisphereGatherDegenerate, CoplanarTouchingBlockersActAsTheirUnion) {
   SceneBuilder two, one;
-  for (SceneBuilder* b : {&two, &one}) b->rectangle(-1, 1, -1, 1, 2, true, b->material("lamp", Rgb::Zero(), Rgb::Ones()));
-  const int d2 = two.material("dark", Rgb::Zero(), Rgb::Zero()), d1 = one.material("dark", Rgb::Zero(), Rgb::Zero());
+  for (SceneBuilder* b : {&two, &one})
+    b->rectangle(-1, 1, -1, 1, 2, true, b->material("lamp", Rgb::Zero(), Rgb::Ones()));
+  const int d2 = two.material("dark", Rgb::Zero(), Rgb::Zero()),
+            d1 = one.material("dark", Rgb::Zero(), Rgb::Zero());
   two.rectangle(-0.3, 0.1, -0.2, 0.4, 1, true, d2);
   two.rectangle(0.1, 0.5, -0.2, 0.4, 1, true, d2);
   one.rectangle(-0.3, 0.5, -0.2, 0.4, 1, true, d1);
   for (const Vec3& x : {Vec3(0, 0, 0), Vec3(0.3, 0.2, 0), Vec3(-0.4, 0.1, 0)}) {
-    EXPECT_NEAR(irradiance(two.scene(), x, Vec3::UnitZ()), irradiance(one.scene(), x, Vec3::UnitZ()), 1e-14) << x.transpose();
+    EXPECT_NEAR(irradiance(two.scene(), x, Vec3::UnitZ()),
+                irradiance(one.scene(), x, Vec3::UnitZ()), 1e-14)
+        << x.transpose();
   }
 }
 
 TEST(HemisphereGatherDegenerate, ConcaveLamp) {
   // An L: [0, 2] x [0, 2] minus [1, 2] x [1, 2], at height 1, by superposition.
   SceneBuilder b;
-  b.polygon({{0, 0, 1}, {0, 2, 1}, {1, 2, 1}, {1, 1, 1}, {2, 1, 1}, {2, 0, 1}}, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+  b.polygon({{0, 0, 1}, {0, 2, 1}, {1, 2, 1}, {1, 1, 1}, {2, 1, 1}, {2, 0, 1}},
+            b.material("lamp", Rgb::Zero(), Rgb::Ones()));
   const Vec3 x(0.6, 0.4, 0);
   const double expected = rect_ff(-0.6, 1.4, -0.4, 1.6, 1) - rect_ff(0.4, 1.4, 0.6, 1.6, 1);
   EXPECT_NEAR(irradiance(b.scene(), x, Vec3::UnitZ()), expected, 1e-13);
@@ -238,7 +260,8 @@ TEST(HemisphereGatherDegenerate, TinyAndHugePolygons) {
   {
     SceneBuilder b;
     const double s = 1e-6, h = 1, off = std::tan(kPi / 6);
-    b.rectangle(off - s / 2, off + s / 2, -s / 2, s / 2, h, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+    b.rectangle(off - s / 2, off + s / 2, -s / 2, s / 2, h, true,
+                b.material("lamp", Rgb::Zero(), Rgb::Ones()));
     const double r2 = h * h + off * off, cos1 = h / std::sqrt(r2);
     const double expected = s * s * cos1 * cos1 / (kPi * r2);
     EXPECT_NEAR(irradiance(b.scene(), Vec3::Zero(), Vec3::UnitZ()), expected, 1e-9 * expected);
@@ -261,8 +284,10 @@ Scene box_with_blockers() {
   const int block = b.material("block", Rgb::Constant(0.5), Rgb::Constant(0.25));
   auto grid = [&](const Vec3& o, const Vec3& u, const Vec3& v) {
     for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) b.polygon({o + i / 3.0 * u + j / 3.0 * v, o + (i + 1) / 3.0 * u + j / 3.0 * v,
-                                             o + (i + 1) / 3.0 * u + (j + 1) / 3.0 * v, o + i / 3.0 * u + (j + 1) / 3.0 * v}, wall);
+      for (int j = 0; j < 3; ++j)
+        b.polygon({o + i / 3.0 * u + j / 3.0 * v, o + (i + 1) / 3.0 * u + j / 3.0 * v,
+                   o + (i + 1) / 3.0 * u + (j + 1) / 3.0 * v, o + i / 3.0 * u + (j + 1) / 3.0 * v},
+                  wall);
     }
   };
   // Six walls, fronts inward (u x v points into the box).
@@ -273,7 +298,8 @@ Scene box_with_blockers() {
   grid({0, 0, 0}, {0, 0, 1}, {1, 0, 0});
   grid({0, 1, 0}, {1, 0, 0}, {0, 0, 1});
   b.polygon({{0.3, 0.3, 0.5}, {0.6, 0.3, 0.6}, {0.6, 0.7, 0.6}, {0.3, 0.7, 0.5}}, block);
-  b.polygon({{0.5, 0.2, 0.3}, {0.5, 0.8, 0.3}, {0.5, 0.8, 0.8}, {0.5, 0.2, 0.8}}, block);  // crosses the first
+  b.polygon({{0.5, 0.2, 0.3}, {0.5, 0.8, 0.3}, {0.5, 0.8, 0.8}, {0.5, 0.2, 0.8}},
+            block);  // crosses the first
   return b.scene();
 }
 
@@ -301,26 +327,31 @@ TEST(HemisphereGatherInvariants, ResultDoesNotDependOnPolygonOrder) {
     const HemisphereGatherer gatherer(faces_from_polygons(scene), scene.tolerance());
     for (int i = 0; i < 50; ++i) {
       const Vec3 x(u(rng), u(rng), u(rng));
-      reference.emplace_back(x, gatherer.gather(x, Vec3(0.3, -0.2, 0.9).normalized()).irradiance.x());
+      reference.emplace_back(x,
+                             gatherer.gather(x, Vec3(0.3, -0.2, 0.9).normalized()).irradiance.x());
     }
   }
   for (int shuffle = 0; shuffle < 3; ++shuffle) {
     std::shuffle(scene.polygons.begin(), scene.polygons.end(), rng);
     const HemisphereGatherer gatherer(faces_from_polygons(scene), scene.tolerance());
     for (const auto& [x, expected] : reference) {
-      ASSERT_NEAR(gatherer.gather(x, Vec3(0.3, -0.2, 0.9).normalized()).irradiance.x(), expected, 1e-12) << x.transpose();
+      ASSERT_NEAR(gatherer.gather(x, Vec3(0.3, -0.2, 0.9).normalized()).irradiance.x(), expected,
+                  1e-12)
+          << x.transpose();
     }
   }
 }
 
 TEST(HemisphereGatherInvariants, VisibleFormFactorsNeverExceedOne) {
-  const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
+  const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
   const HemisphereGatherer gatherer(faces_from_polygons(scene), scene.tolerance());
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> u(0, 1);
   std::normal_distribution<double> g;
   for (int i = 0; i < 500; ++i) {
-    const Vec3 x(556 * u(rng), 548.8 * u(rng), -300 + 859 * u(rng));  // also in front of the open box
+    const Vec3 x(556 * u(rng), 548.8 * u(rng),
+                 -300 + 859 * u(rng));  // also in front of the open box
     const HemisphereGather r = gatherer.gather(x, Vec3(g(rng), g(rng), g(rng)).normalized());
     ASSERT_LE(r.covered, 1 + 1e-12) << x.transpose();
   }

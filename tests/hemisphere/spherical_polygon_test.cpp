@@ -1,13 +1,12 @@
 #include "hemisphere/spherical_polygon.h"
 
-#include "geometry/clip.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
 
+#include "geometry/clip.h"
 #include "hemisphere/visible_surface.h"
 #include "tests/closed_forms.h"
 
@@ -36,7 +35,8 @@ TEST(SphericalPolygon, SplitPartsAddUpAndLieOnTheirSides) {
   for (int i = 0; i < 1000; ++i) {
     const Vec3 m = Vec3(g(rng), g(rng), 0.3 * g(rng)).normalized();
     const auto [pos, neg] = rect.split(m);
-    ASSERT_NEAR(pos.form_factor(Vec3::UnitZ()) + neg.form_factor(Vec3::UnitZ()), whole, 1e-14) << m.transpose();
+    ASSERT_NEAR(pos.form_factor(Vec3::UnitZ()) + neg.form_factor(Vec3::UnitZ()), whole, 1e-14)
+        << m.transpose();
     for (const Vec3& v : pos.vertices()) ASSERT_GE(m.dot(v), -1e-15);
     for (const Vec3& v : neg.vertices()) ASSERT_LE(m.dot(v), 1e-15);
   }
@@ -50,22 +50,28 @@ TEST(SphericalPolygon, HolesSubtractWithTheirOrientation) {
   // A 4 x 4 square with a 1 x 1 hole, at height 1: FF = FF(outer) - FF(hole), and the hole
   // listed the other way round does exactly that.
   const std::vector<Vec3> outer{{-2, -2, 1}, {2, -2, 1}, {2, 2, 1}, {-2, 2, 1}};
-  const std::vector<Vec3> hole{{0.5, 0.5, 1}, {0.5, 1.5, 1}, {1.5, 1.5, 1}, {1.5, 0.5, 1}};  // clockwise
-  const double expected = 4 * howell_b3(2, 2, 1) - (howell_b3(1.5, 1.5, 1) - 2 * howell_b3(1.5, 0.5, 1) + howell_b3(0.5, 0.5, 1));
+  const std::vector<Vec3> hole{
+      {0.5, 0.5, 1}, {0.5, 1.5, 1}, {1.5, 1.5, 1}, {1.5, 0.5, 1}};  // clockwise
+  const double expected =
+      4 * howell_b3(2, 2, 1) -
+      (howell_b3(1.5, 1.5, 1) - 2 * howell_b3(1.5, 0.5, 1) + howell_b3(0.5, 0.5, 1));
   EXPECT_NEAR(form_factor_with_holes(outer, {hole}, Vec3::UnitZ()), expected, 1e-13);
 }
 
 TEST(SphericalPolygon, DegenerateInputIsEmpty) {
   EXPECT_TRUE(SphericalPolygon({{0, 0, 1}, {1, 0, 1}}).empty());
-  EXPECT_TRUE(SphericalPolygon({{0, 0, 1}, {1, 0, 1}, {2, 0, 1}}).empty()) << "collinear: on one great circle";
-  EXPECT_TRUE(SphericalPolygon({{1, 0, 0}, {2, 0, 0}, {1, 1, 0}}).empty()) << "edge-on from x: a plane through x";
+  EXPECT_TRUE(SphericalPolygon({{0, 0, 1}, {1, 0, 1}, {2, 0, 1}}).empty())
+      << "collinear: on one great circle";
+  EXPECT_TRUE(SphericalPolygon({{1, 0, 0}, {2, 0, 0}, {1, 1, 0}}).empty())
+      << "edge-on from x: a plane through x";
   // Coincident vertices are merged, not fatal.
   const SphericalPolygon dup({{0, 0, 1}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {1, 1, 1}});
   EXPECT_EQ(dup.vertices().size(), 3u);
 }
 
 TEST(SphericalPolygon, ClipsAtTheTangentPlaneExactlyIn3D) {
-  const auto clipped = clip_to_halfspace({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}}, Vec3::Zero(), Vec3::UnitZ());
+  const auto clipped = clip_to_halfspace({{0, 1, -1}, {1, 1, -1}, {1, 1, 1}, {0, 1, 1}},
+                                         Vec3::Zero(), Vec3::UnitZ());
   ASSERT_EQ(clipped.size(), 4u);
   EXPECT_EQ(clipped[0], Vec3(1, 1, 0));  // the first crossing, then the kept upper vertices
   EXPECT_EQ(clipped[3], Vec3(0, 1, 0));
@@ -87,9 +93,10 @@ TEST(SphericalPredicates, PointInPolygonAndArcIntersection) {
   // great circle: no crossing point.
   EXPECT_FALSE(arc_intersection(Vec3(-1, 0, 1).normalized(), Vec3(-0.5, 0, 1).normalized(),
                                 Vec3(0, -1, 1).normalized(), Vec3(0, 1, 1).normalized()));
-  EXPECT_FALSE(arc_intersection(Vec3(0, 0, 1), Vec3(1, 0, 1).normalized(), Vec3(0, 0, 1), Vec3(0, 1, 1).normalized()));
-  EXPECT_FALSE(arc_intersection(Vec3(-1, 0, 1).normalized(), Vec3(0, 0, 1), Vec3(0.2, 0, 1).normalized(),
-                                Vec3(1, 0, 1).normalized()));
+  EXPECT_FALSE(arc_intersection(Vec3(0, 0, 1), Vec3(1, 0, 1).normalized(), Vec3(0, 0, 1),
+                                Vec3(0, 1, 1).normalized()));
+  EXPECT_FALSE(arc_intersection(Vec3(-1, 0, 1).normalized(), Vec3(0, 0, 1),
+                                Vec3(0.2, 0, 1).normalized(), Vec3(1, 0, 1).normalized()));
   // Random crossings: the point lies on both great circles and inside the polygon they bound.
   std::mt19937_64 rng(4);
   std::normal_distribution<double> g;
@@ -168,7 +175,8 @@ TEST(VisibleSurface, NearerPolygonHidesFartherWhateverTheOrder) {
       v.insert(s, source);
     }
     double ff_source = 0;
-    for (const auto& f : v.fragments()) ff_source += f.id == 0 ? f.region.form_factor(Vec3::UnitZ()) : 0;
+    for (const auto& f : v.fragments())
+      ff_source += f.id == 0 ? f.region.form_factor(Vec3::UnitZ()) : 0;
     // The blocker's shadow on the source plane is [-1, 1]^2: it hides all of the source.
     EXPECT_NEAR(ff_source, 0.0, 1e-15) << "order " << order;
     EXPECT_NEAR(v.covered_form_factor(Vec3::UnitZ()), 4 * howell_b3(1, 1, 2), 1e-14);

@@ -2,15 +2,14 @@
 // and the certified bound is never violated.
 #include "localpass/local_pass.h"
 
-#include "hemisphere/hemisphere_gatherer.h"
-
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <random>
 
-#include "render/irradiance_render.h"
+#include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/monte_carlo.h"
+#include "render/irradiance_render.h"
 #include "scene/ray_caster.h"
 #include "tests/coarse_solution.h"
 
@@ -34,8 +33,9 @@ std::vector<SurfacePoint> surface_points(int count, uint64_t seed) {
     const EmittingFace& f = s.faces[static_cast<size_t>(u(rng) * s.faces.size()) % s.faces.size()];
     double a = u(rng), b = u(rng);
     if (a + b > 1) a = 1 - a, b = 1 - b;
-    points.push_back({f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]),
-                      s.scene.polygons[f.polygon].normal});
+    points.push_back(
+        {f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]),
+         s.scene.polygons[f.polygon].normal});
   }
   return points;
 }
@@ -53,7 +53,8 @@ TEST(LocalPass, ToleranceZeroIsTheExactGatherWithNoBound) {
     const LocalPassResult r = pass.gather(p.x, p.n, 0);
     const Rgb reference = plain.gather(p.x, p.n).irradiance;
     EXPECT_LE((r.irradiance - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.maxCoeff());
-    EXPECT_LE((naive.gather(p.x, p.n, 0).irradiance - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.maxCoeff());
+    EXPECT_LE((naive.gather(p.x, p.n, 0).irradiance - reference).cwiseAbs().maxCoeff(),
+              1e-12 * reference.maxCoeff());
     EXPECT_EQ(r.bound, Rgb::Zero());
     EXPECT_LE(r.gathers, 1);
     culled += r.unoccluded > 0;
@@ -69,10 +70,13 @@ TEST(LocalPass, HemisphereAndVertexAgreeAtToleranceZero) {
   const LocalPass vertex(s.scene, s.faces, Method::vertex);
   int disagreements = 0;
   for (const SurfacePoint& p : surface_points(200, 2)) {
-    const Rgb h = hemisphere.gather(p.x, p.n, 0).irradiance, v = vertex.gather(p.x, p.n, 0).irradiance;
+    const Rgb h = hemisphere.gather(p.x, p.n, 0).irradiance,
+              v = vertex.gather(p.x, p.n, 0).irradiance;
     for (int c = 0; c < 3; ++c) {
-      if (!(std::abs(h[c] - v[c]) <= std::max(1e-9 * std::abs(h[c]), 1e-12)) && ++disagreements <= 5) {
-        ADD_FAILURE() << "at " << p.x.transpose() << ": hemisphere " << h.transpose() << " vertex " << v.transpose();
+      if (!(std::abs(h[c] - v[c]) <= std::max(1e-9 * std::abs(h[c]), 1e-12)) &&
+          ++disagreements <= 5) {
+        ADD_FAILURE() << "at " << p.x.transpose() << ": hemisphere " << h.transpose() << " vertex "
+                      << v.transpose();
       }
     }
   }
@@ -97,10 +101,11 @@ TEST(LocalPass, CertifiedBoundHoldsAtEveryToleranceForBothMethods) {
         const Rgb error = (r.irradiance - exact[i]).cwiseAbs();
         const Rgb slack = Rgb::Constant(1e-12) + 1e-12 * exact[i];
         if (((error - r.bound).array() > slack.array()).any() && ++violations <= 3) {
-          ADD_FAILURE() << "T=" << tolerance << " at " << points[i].x.transpose() << ": error " << error.transpose()
-                        << " bound " << r.bound.transpose();
+          ADD_FAILURE() << "T=" << tolerance << " at " << points[i].x.transpose() << ": error "
+                        << error.transpose() << " bound " << r.bound.transpose();
         }
-        if (r.bound.maxCoeff() > tolerance * r.irradiance.maxCoeff() * (1 + 1e-12) + 1e-15) ++stopped_late;
+        if (r.bound.maxCoeff() > tolerance * r.irradiance.maxCoeff() * (1 + 1e-12) + 1e-15)
+          ++stopped_late;
         emitting += r.gathered_exactly;
       }
       EXPECT_EQ(violations, 0) << "tolerance " << tolerance;

@@ -3,18 +3,17 @@
 // plain gatherers over every face, on scenes built to break it.
 #include "localpass/occlusion_culling.h"
 
-#include "hemisphere/hemisphere_gatherer.h"
-#include "vertex/vertex_tracer.h"
-
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/local_pass.h"
 #include "localpass/shaft.h"
 #include "tests/coarse_solution.h"
 #include "tests/random_scenes.h"
 #include "tests/surface_points.h"
+#include "vertex/vertex_tracer.h"
 
 namespace rad {
 namespace {
@@ -30,11 +29,13 @@ TEST(Shaft, HoldsEverySegmentFromThePointToTheBox) {
     if (trial % 3 == 0) b[trial % 2] = a[trial % 2];  // flat
     const Eigen::AlignedBox3d box(a.cwiseMin(b), a.cwiseMax(b));
     Vec3 x = 3 * Vec3(u(rng), u(rng), u(rng));
-    if (trial % 5 == 0) x = box.center();                   // inside
+    if (trial % 5 == 0) x = box.center();                            // inside
     if (trial % 7 == 0) x[0] = box.min().x(), x[1] = box.max().y();  // in a face's plane
     const Shaft shaft(x, box, 1e-9);
     for (int k = 0; k < 20; ++k) {
-      const Vec3 y = box.min() + (box.max() - box.min()).cwiseProduct(0.5 * (Vec3(u(rng), u(rng), u(rng)) + Vec3::Ones()));
+      const Vec3 y =
+          box.min() +
+          (box.max() - box.min()).cwiseProduct(0.5 * (Vec3(u(rng), u(rng), u(rng)) + Vec3::Ones()));
       const Vec3 p = x + 0.5 * (1 + u(rng)) * (y - x);
       ASSERT_TRUE(shaft.may_meet({p})) << "trial " << trial;
       const Vec3 far = 3 * Vec3(u(rng), u(rng), u(rng));
@@ -58,7 +59,8 @@ std::vector<EmittingFace> radiating_faces(const Scene& scene, uint64_t seed) {
 ::testing::AssertionResult same(const Rgb& culled, const Rgb& plain) {
   for (int c = 0; c < 3; ++c) {
     if (!(std::abs(culled[c] - plain[c]) <= 1e-10 * std::max(1.0, std::abs(plain[c])))) {
-      return ::testing::AssertionFailure() << "culled " << culled.transpose() << " plain " << plain.transpose();
+      return ::testing::AssertionFailure()
+             << "culled " << culled.transpose() << " plain " << plain.transpose();
     }
   }
   return ::testing::AssertionSuccess();
@@ -67,21 +69,22 @@ std::vector<EmittingFace> radiating_faces(const Scene& scene, uint64_t seed) {
 /// The local pass at tolerance 0 against the plain gather of the same method at every site.
 struct Differential {
   int points = 0, failures = 0, culled_points = 0;
-  void compare(const Scene& scene, const std::vector<EmittingFace>& faces, const std::vector<test::ProbeSite>& sites,
-               const std::string& label) {
+  void compare(const Scene& scene, const std::vector<EmittingFace>& faces,
+               const std::vector<test::ProbeSite>& sites, const std::string& label) {
     const HemisphereGatherer hemisphere(faces, scene.tolerance());
     const VertexTracer tracer(scene, faces);
     const LocalPass hemisphere_pass(scene, faces, Method::hemisphere);
     const LocalPass vertex_pass(scene, faces, Method::vertex);
     for (const test::ProbeSite& s : sites) {
       ++points;
-      const LocalPassResult h = hemisphere_pass.gather(s.x, s.n, 0), v = vertex_pass.gather(s.x, s.n, 0);
+      const LocalPassResult h = hemisphere_pass.gather(s.x, s.n, 0),
+                            v = vertex_pass.gather(s.x, s.n, 0);
       culled_points += h.unoccluded > 0;
       const auto hs = same(h.irradiance, hemisphere.gather(s.x, s.n).irradiance);
       const auto vs = same(v.irradiance, tracer.gather(s.x, s.n).irradiance);
       if ((!hs || !vs) && ++failures <= 10) {
-        ADD_FAILURE() << label << " at " << s.x.transpose() << ": hemisphere " << hs.message() << "; vertex "
-                      << vs.message();
+        ADD_FAILURE() << label << " at " << s.x.transpose() << ": hemisphere " << hs.message()
+                      << "; vertex " << vs.message();
       }
     }
   }
@@ -106,7 +109,8 @@ TEST(OcclusionCulling, ChangesNothingOnTheDegenerateFamilies) {
     Differential d;
     for (uint64_t seed = 1; seed <= 60; ++seed) {
       test::RandomSceneMaker maker(1000 * (family + 1) + seed);
-      const auto r = maker.conjunctive_scene(static_cast<test::RandomSceneMaker::Conjunction>(family));
+      const auto r =
+          maker.conjunctive_scene(static_cast<test::RandomSceneMaker::Conjunction>(family));
       d.compare(r.scene, radiating_faces(r.scene, seed), r.sites,
                 "family " + std::to_string(family) + " seed " + std::to_string(seed));
     }
@@ -140,7 +144,8 @@ TEST(OcclusionCulling, NothingInsideAClosedCubeIsOccluded) {
   std::uniform_real_distribution<double> u(0.01, 0.99);
   std::normal_distribution<double> g;
   for (int i = 0; i < 200; ++i) {
-    const OcclusionSplit split = culling.split(Vec3(u(rng), u(rng), u(rng)), Vec3(g(rng), g(rng), g(rng)).normalized());
+    const OcclusionSplit split =
+        culling.split(Vec3(u(rng), u(rng), u(rng)), Vec3(g(rng), g(rng), g(rng)).normalized());
     EXPECT_TRUE(split.shadowed.empty());
     EXPECT_GT(split.unoccluded.size(), 0u);
   }

@@ -6,10 +6,10 @@
 
 #include <random>
 
-#include "scene/polygon_faces.h"
+#include "geometry/lambert.h"
 #include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/local_pass.h"
-#include "geometry/lambert.h"
+#include "scene/polygon_faces.h"
 #include "tests/coarse_solution.h"
 
 namespace rad {
@@ -39,14 +39,15 @@ TEST(Octree, EveryItemInExactlyOneLeafInsideItsBounds) {
 }
 
 /// Fraction of cosine-weighted directions from x that hit the box (slab test), seeded.
-double box_form_factor_monte_carlo(const Eigen::AlignedBox3d& box, const Vec3& x, const Vec3& n, int samples,
-                                   std::mt19937_64& rng) {
+double box_form_factor_monte_carlo(const Eigen::AlignedBox3d& box, const Vec3& x, const Vec3& n,
+                                   int samples, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
   const PlaneFrame frame(Vec3::Zero(), n);
   int hits = 0;
   for (int s = 0; s < samples; ++s) {
     const double r1 = u(rng), r2 = u(rng), r = std::sqrt(r1), phi = 2 * std::numbers::pi * r2;
-    const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - r1) * n;
+    const Vec3 d =
+        r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v + std::sqrt(1 - r1) * n;
     double t0 = 0, t1 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
       if (d[a] == 0) {
@@ -112,7 +113,8 @@ TEST(Octree, BoundsCoverWhatEachVoxelCanSendOverRandomTriples) {
     // Half the points on random faces (as the local pass sees them), half anywhere in the box.
     Vec3 x, n;
     if (t % 2 == 0) {
-      const EmittingFace& f = c.faces[static_cast<size_t>(u(rng) * c.faces.size()) % c.faces.size()];
+      const EmittingFace& f =
+          c.faces[static_cast<size_t>(u(rng) * c.faces.size()) % c.faces.size()];
       double a = u(rng), b = u(rng);
       if (a + b > 1) a = 1 - a, b = 1 - b;
       x = f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]);
@@ -127,10 +129,12 @@ TEST(Octree, BoundsCoverWhatEachVoxelCanSendOverRandomTriples) {
     if (exact.maxCoeff() > 0) ++lit;
     const Rgb slack = Rgb::Constant(1e-12) + 1e-12 * exact;
     if (((exact - bound).array() > slack.array()).any() && ++violations <= 5) {
-      ADD_FAILURE() << "eq. 8 bound " << bound.transpose() << " < exact " << exact.transpose() << " at voxel " << v;
+      ADD_FAILURE() << "eq. 8 bound " << bound.transpose() << " < exact " << exact.transpose()
+                    << " at voxel " << v;
     }
     if (((exact - bound7).array() > slack.array()).any()) ++violations7;
-    if (((bound - bound7).array() > 1e-15).any()) ADD_FAILURE() << "eq. 8 looser than eq. 7 at voxel " << v;
+    if (((bound - bound7).array() > 1e-15).any())
+      ADD_FAILURE() << "eq. 8 looser than eq. 7 at voxel " << v;
   }
   EXPECT_EQ(violations, 0);
   EXPECT_EQ(violations7, 0);

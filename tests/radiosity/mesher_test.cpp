@@ -30,18 +30,22 @@ void expect_tiling(const Scene& scene, const std::vector<Patch>& patches, double
     EXPECT_GT(newell_vector(p.corners).dot(p.normal), 0) << "counter-clockwise from the front";
   }
   for (size_t i = 0; i < scene.polygons.size(); ++i) {
-    EXPECT_NEAR(area[static_cast<int>(i)], scene.polygons[i].area, 1e-12 * scene.polygons[i].area) << "polygon " << i;
+    EXPECT_NEAR(area[static_cast<int>(i)], scene.polygons[i].area, 1e-12 * scene.polygons[i].area)
+        << "polygon " << i;
   }
 }
 
 TEST(Mesher, PatchesTileQuadsTrianglesAndConcavePolygons) {
-  const Scene quad = one_polygon({{0, 0, 0}, {3, 0, 0}, {3.5, 0, 2}, {0, 0, 2}});  // convex, not a rectangle
+  const Scene quad =
+      one_polygon({{0, 0, 0}, {3, 0, 0}, {3.5, 0, 2}, {0, 0, 2}});  // convex, not a rectangle
   expect_tiling(quad, make_patches(quad, 0.5), 0.6);
   const Scene tri = one_polygon({{0, 0, 0}, {0, 1, 0}, {2, 0, 0}});
   expect_tiling(tri, make_patches(tri, 0.3), 0.3);
-  const Scene l_shape = one_polygon({{0, 0, 0}, {0, 2, 0}, {1, 2, 0}, {1, 1, 0}, {2, 1, 0}, {2, 0, 0}});
+  const Scene l_shape =
+      one_polygon({{0, 0, 0}, {0, 2, 0}, {1, 2, 0}, {1, 1, 0}, {2, 1, 0}, {2, 0, 0}});
   expect_tiling(l_shape, make_patches(l_shape, 0.25), 0.5);
-  const Scene cornell = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
+  const Scene cornell =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
   expect_tiling(cornell, make_patches(cornell, 77), 77 * 1.5);
 }
 
@@ -75,8 +79,8 @@ Solution uneven_solution() {
   p.normal = Vec3::UnitZ();
   p.area = 16;
   s.patches.push_back(p);
-  s.elements = make_elements(s.patches, 1);  // 4 elements of 2 x 2
-  split_element(s.elements, 0);              // one of them into 1 x 1
+  s.elements = make_elements(s.patches, 1);                  // 4 elements of 2 x 2
+  split_element(s.elements, 0);                              // one of them into 1 x 1
   split_element(s.elements, s.elements[0].first_child + 2);  // and one of those into 0.5 x 0.5
   // Radiosity: a linear function of position, so exact interpolation is known.
   for (Element& e : s.elements) e.radiosity = Rgb(e.centroid.x(), e.centroid.y(), 1);
@@ -98,7 +102,8 @@ TEST(ElementMesh, IsConformingAcrossTJunctions) {
   EXPECT_NEAR(boundary, 16.0, 1e-12);
   // The unsplit 2 x 2 elements next to the split one carry its T-vertices.
   int with_t_vertex = 0;
-  for (int f = 0; f < mesh.face_count(); ++f) with_t_vertex += mesh.face_points(f).size() > 4 ? 1 : 0;
+  for (int f = 0; f < mesh.face_count(); ++f)
+    with_t_vertex += mesh.face_points(f).size() > 4 ? 1 : 0;
   // The right and top 2 x 2 neighbours, and the 1 x 1 cells left of and below the 0.5 x 0.5 ones.
   EXPECT_EQ(with_t_vertex, 4);
 }
@@ -117,7 +122,8 @@ TEST(ElementMesh, MeanValueInterpolationReproducesLinearFunctionsAndIsContinuous
     ASSERT_NEAR(v.y(), x.y(), 1e-12);
   }
   // On an edge: linear between its ends; at a vertex: the vertex value.
-  EXPECT_NEAR(interpolate_mean_value(pentagon, values, Vec3::UnitZ(), Vec3(1.5, 0, 0)).x(), 5.5, 1e-12);
+  EXPECT_NEAR(interpolate_mean_value(pentagon, values, Vec3::UnitZ(), Vec3(1.5, 0, 0)).x(), 5.5,
+              1e-12);
   EXPECT_EQ(interpolate_mean_value(pentagon, values, Vec3::UnitZ(), Vec3(2, 2, 0)), values[3]);
 
   // Continuity across a T-junction edge with arbitrary (non-linear) vertex values: both faces
@@ -150,7 +156,8 @@ TEST(ElementMesh, MeanValueInterpolationReproducesLinearFunctionsAndIsContinuous
       ASSERT_GE(a, 0);
       ASSERT_GE(b, 0);
       ASSERT_NE(a, b);
-      EXPECT_NEAR((value_at(a, on) - value_at(b, on)).norm(), 0, 1e-12) << "crack at " << on.transpose();
+      EXPECT_NEAR((value_at(a, on) - value_at(b, on)).norm(), 0, 1e-12)
+          << "crack at " << on.transpose();
     }
   }
 }

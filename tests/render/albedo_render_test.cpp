@@ -34,7 +34,8 @@ TEST_F(CornellAlbedo, ShowsWallsLightAndBlocksWhereThePublishedViewHasThem) {
   EXPECT_EQ(image.at(1, 32), reflectance("red"));
   EXPECT_EQ(image.at(62, 32), reflectance("green"));
   // Top centre, a little down: the light shows its emission.
-  const Material& light = scene_.materials[scene_.polygons[scene_.objects[2].first_polygon].material];
+  const Material& light =
+      scene_.materials[scene_.polygons[scene_.objects[2].first_polygon].material];
   ASSERT_TRUE(light.is_emitter());
   EXPECT_EQ(image.at(32, 9), light.emission);  // the light spans rows 8 to 10 at 64 px
   // Centre: the back wall or a block, all white.

@@ -40,7 +40,8 @@ TEST(Camera, EdgeRaysSpanTheFieldOfView) {
     const Camera camera(spec);
     EXPECT_NEAR(angle_deg(camera.ray(150, 0).direction, camera.ray(150, 200).direction), fov, 1e-9);
     // Horizontal: tan(h/2) = aspect * tan(v/2).
-    const double h = 2 * std::atan(1.5 * std::tan(fov * std::numbers::pi / 360)) * 180 / std::numbers::pi;
+    const double h =
+        2 * std::atan(1.5 * std::tan(fov * std::numbers::pi / 360)) * 180 / std::numbers::pi;
     EXPECT_NEAR(angle_deg(camera.ray(0, 100).direction, camera.ray(300, 100).direction), h, 1e-9);
   }
 }

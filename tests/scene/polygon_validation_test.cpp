@@ -58,9 +58,9 @@ TEST(PolygonValidation, RejectsEachErrorClassNamingTheElement) {
 TEST(PolygonValidation, SplitsSlightlyNonPlanarPolygonIntoTrianglesWithWarning) {
   // The Cornell box's left wall: 3.2 mm of twist over a 559 x 549 mm quad.
   std::vector<std::string> warnings;
-  const auto result = make_polygons(
-      {{552.8, 0, 0}, {549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}, "left", 0, 5, 0,
-      warnings);
+  const auto result =
+      make_polygons({{552.8, 0, 0}, {549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}},
+                    "left", 0, 5, 0, warnings);
   ASSERT_EQ(result.size(), 2u);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("split into 2 triangles"), std::string::npos) << warnings[0];
@@ -77,8 +77,8 @@ TEST(PolygonValidation, SplitsSlightlyNonPlanarPolygonIntoTrianglesWithWarning) 
 
 TEST(PolygonValidation, MergesRepeatedVerticesWithWarning) {
   std::vector<std::string> warnings;
-  const auto result = make_polygons({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0}},
-                                    "w", 0, 0, 0, warnings);
+  const auto result = make_polygons(
+      {{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0}}, "w", 0, 0, 0, warnings);
   ASSERT_EQ(result.size(), 1u);
   EXPECT_EQ(result[0].vertices.size(), 4u);
   ASSERT_EQ(warnings.size(), 1u);

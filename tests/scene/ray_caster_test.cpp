@@ -108,7 +108,8 @@ void compare_with_brute_force(const Scene& scene, std::mt19937_64& rng, const Ve
     }
     ++compared;
     ASSERT_EQ(hit.has_value(), expected.polygon >= 0)
-        << "ray " << i << " origin " << ray.origin.transpose() << " dir " << ray.direction.transpose();
+        << "ray " << i << " origin " << ray.origin.transpose() << " dir "
+        << ray.direction.transpose();
     if (!hit) continue;
     ++hits;
     ASSERT_EQ(hit->polygon, expected.polygon) << "ray " << i;
@@ -134,7 +135,8 @@ TEST(RayCaster, MatchesBruteForceOnRandomPolygonSoup) {
 }
 
 TEST(RayCaster, MatchesBruteForceInsideCornellBox) {
-  const Scene scene = load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
+  const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
   std::mt19937_64 rng(99);
   // Origins inside the box; rays leaving through the open front (z = 0) must miss.
   compare_with_brute_force(scene, rng, Vec3(10, 10, 10), Vec3(546, 538, 549), 10000);
@@ -146,7 +148,8 @@ TEST(RayCaster, RespectsDistanceInterval) {
   std::vector<std::string> warnings;
   for (double z : {1.0, 2.0}) {
     // Facing -z (towards the origin): clockwise seen from +z.
-    for (Polygon& p : make_polygons({{-1, -1, z}, {-1, 1, z}, {1, 1, z}, {1, -1, z}}, "q", 0, 0, 0, warnings)) {
+    for (Polygon& p :
+         make_polygons({{-1, -1, z}, {-1, 1, z}, {1, 1, z}, {1, -1, z}}, "q", 0, 0, 0, warnings)) {
       scene.polygons.push_back(p);
     }
   }

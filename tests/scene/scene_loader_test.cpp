@@ -38,7 +38,8 @@ TEST(SceneLoader, LoadsCornellBox) {
     const Polygon& p = scene.polygons[i];
     const bool block = scene.objects[p.object].name.find("block") != std::string::npos;
     if (block) continue;  // block faces point out of the blocks, not at the centre
-    EXPECT_GT(p.normal.dot(centre - p.vertices[0]), 0) << scene.describe_polygon(static_cast<int>(i));
+    EXPECT_GT(p.normal.dot(centre - p.vertices[0]), 0)
+        << scene.describe_polygon(static_cast<int>(i));
   }
 }
 
@@ -55,7 +56,8 @@ TEST(SceneLoader, LoadsTheTestScenes) {
 }
 
 TEST(SceneLoader, ReadsEveryMeshFormat) {
-  for (const char* name : {"square_obj.json", "square_off.json", "square_ply.json", "square_stl.json"}) {
+  for (const char* name :
+       {"square_obj.json", "square_off.json", "square_ply.json", "square_stl.json"}) {
     const Scene scene = load_scene(kData / "meshes" / name);
     EXPECT_NEAR(scene.total_area(), 1.0, 1e-12) << name;
     EXPECT_TRUE(scene.warnings.empty()) << name << ": " << scene.warnings.front();

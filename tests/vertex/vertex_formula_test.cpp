@@ -29,7 +29,8 @@ TEST(StarkFormula, MatchesHowellRectangles) {
     EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), rect), c.F, 1e-12 * c.F);
   }
   const double expected = test::howell_rectangle(-0.7, 1.3, 0.2, 2.9, 1.5);
-  const std::vector<Vec3> offset{{-0.7, 0.2, 1.5}, {1.3, 0.2, 1.5}, {1.3, 2.9, 1.5}, {-0.7, 2.9, 1.5}};
+  const std::vector<Vec3> offset{
+      {-0.7, 0.2, 1.5}, {1.3, 0.2, 1.5}, {1.3, 2.9, 1.5}, {-0.7, 2.9, 1.5}};
   EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), offset), expected, 1e-12 * expected);
 }
 
@@ -49,7 +50,8 @@ TEST(StarkFormula, AgreesWithLambertOnRandomPolygons) {
     std::vector<Vec3> polygon;
     for (int i = 0; i < k; ++i) {
       const double r = (star && i % 2) ? 0.3 : 0.5 + 0.5 * std::abs(u(rng)) * !star + 0.5 * star;
-      polygon.push_back(centre + r * (std::cos(2 * kPi * i / k) * f.u + std::sin(2 * kPi * i / k) * f.v));
+      polygon.push_back(centre +
+                        r * (std::cos(2 * kPi * i / k) * f.u + std::sin(2 * kPi * i / k) * f.v));
     }
     const Vec3 n = Vec3(0.3 * g(rng), 0.3 * g(rng), 1).normalized();
     const double lambert = point_polygon_form_factor(Vec3::Zero(), n, polygon);
@@ -57,9 +59,11 @@ TEST(StarkFormula, AgreesWithLambertOnRandomPolygons) {
     const double error = std::abs(stark - lambert);
     // 1e-12 relative, with an absolute floor of 1e-13 (rounding in either formula).
     worst = std::max(worst, error / std::max(lambert, 0.1));
-    ASSERT_LE(error, 1e-12 * std::max(lambert, 0.1)) << "trial " << trial << ": stark " << stark << " lambert " << lambert;
+    ASSERT_LE(error, 1e-12 * std::max(lambert, 0.1))
+        << "trial " << trial << ": stark " << stark << " lambert " << lambert;
   }
-  std::cout << "worst difference to Lambert over 5000 random polygons: " << worst << " (relative above 0.1)\n";
+  std::cout << "worst difference to Lambert over 5000 random polygons: " << worst
+            << " (relative above 0.1)\n";
 }
 
 TEST(StarkFormula, VerticalAndNearlyVerticalEdges) {
@@ -73,9 +77,11 @@ TEST(StarkFormula, VerticalAndNearlyVerticalEdges) {
     const Vec3 c(0.7, 0.1, 1);
     for (const Vec3& p : square) {
       const Vec3 d = p - c;
-      turned.push_back(c + Vec3(std::cos(angle) * d.x() - std::sin(angle) * d.y(), std::sin(angle) * d.x() + std::cos(angle) * d.y(), 0));
+      turned.push_back(c + Vec3(std::cos(angle) * d.x() - std::sin(angle) * d.y(),
+                                std::sin(angle) * d.x() + std::cos(angle) * d.y(), 0));
     }
-    EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), turned), point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), turned), 1e-13)
+    EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), turned),
+                point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), turned), 1e-13)
         << "angle " << angle;
   }
 }
@@ -93,16 +99,19 @@ TEST(StarkFormula, PlaneNormalFormEqualsThePapersSlopeForm) {
     // The paper's vertex term (slopes, vertical edges omitted) against the plane-normal form.
     const double m2 = u(rng), b2 = y - m2 * x;
     const Vec3 k_in = Vec3(m, -1, y - m * x).normalized(), k_out = Vec3(m2, -1, b2).normalized();
-    ASSERT_NEAR(stark_vertex_term(x, y, m, false, m2, false), stark_G(x, y, k_in) - stark_G(x, y, k_out), 1e-14);
+    ASSERT_NEAR(stark_vertex_term(x, y, m, false, m2, false),
+                stark_G(x, y, k_in) - stark_G(x, y, k_out), 1e-14);
     const Vec3 vertical = Vec3(1, 0, -x).normalized();  // the line X = x
-    ASSERT_NEAR(stark_vertex_term(x, y, m, false, 0, true), stark_G(x, y, k_in) - stark_G(x, y, vertical), 1e-14);
+    ASSERT_NEAR(stark_vertex_term(x, y, m, false, 0, true),
+                stark_G(x, y, k_in) - stark_G(x, y, vertical), 1e-14);
   }
 }
 
 TEST(StarkFormula, ExtraneousCollinearVertexContributesNothing) {
   const std::vector<Vec3> plain{{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
   const std::vector<Vec3> with_t{{-1, -1, 1}, {0.3, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), with_t), stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), plain), 1e-15);
+  EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), with_t),
+              stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), plain), 1e-15);
   // Per vertex: equal incoming and outgoing slopes cancel exactly.
   EXPECT_EQ(stark_vertex_term(0.3, -1, 0.25, false, 0.25, false), 0.0);
 }
@@ -112,21 +121,28 @@ TEST(StarkFormula, TinyAndFarPolygonsWithMeasuredError) {
   // contour formula (atan2 form, accurate at any size; DESIGN.md §7).
   const double off = std::tan(kPi / 6);
   for (double s : {1e-3, 1e-6, 1e-9}) {
-    const std::vector<Vec3> tiny{{off - s / 2, -s / 2, 1}, {off + s / 2, -s / 2, 1}, {off + s / 2, s / 2, 1}, {off - s / 2, s / 2, 1}};
+    const std::vector<Vec3> tiny{{off - s / 2, -s / 2, 1},
+                                 {off + s / 2, -s / 2, 1},
+                                 {off + s / 2, s / 2, 1},
+                                 {off - s / 2, s / 2, 1}};
     const double reference = point_polygon_form_factor(Vec3::Zero(), Vec3::UnitZ(), tiny);
-    const double error = std::abs(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), tiny) - reference) / reference;
-    std::cout << "square of size " << s << " at unit distance: relative difference to Lambert " << error << "\n";
+    const double error =
+        std::abs(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), tiny) - reference) / reference;
+    std::cout << "square of size " << s << " at unit distance: relative difference to Lambert "
+              << error << "\n";
     // Vertex terms of order s cancel to a result of order s^2: relative error ~1e-16 / s
     // (measured 4.7e-11 at 1e-6 and 4.6e-8 at 1e-9).
     EXPECT_LT(error, 1e-15 / s) << "size " << s;
   }
   // Large coordinates: a 1e5 square at 1e6, and the same seen from a far-away receiver.
   const std::vector<Vec3> far{{0, 0, 1e6}, {1e5, 0, 1e6}, {1e5, 1e5, 1e6}, {0, 1e5, 1e6}};
-  EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), far), test::howell_b3(1e5, 1e5, 1e6), 1e-12 * test::howell_b3(1e5, 1e5, 1e6));
+  EXPECT_NEAR(stark_form_factor(Vec3::Zero(), Vec3::UnitZ(), far), test::howell_b3(1e5, 1e5, 1e6),
+              1e-12 * test::howell_b3(1e5, 1e5, 1e6));
   const Vec3 shift(3e7, -2e7, 5e6);
   std::vector<Vec3> shifted;
   for (const Vec3& p : far) shifted.push_back(p + shift);
-  EXPECT_NEAR(stark_form_factor(shift, Vec3::UnitZ(), shifted), test::howell_b3(1e5, 1e5, 1e6), 1e-9 * test::howell_b3(1e5, 1e5, 1e6));
+  EXPECT_NEAR(stark_form_factor(shift, Vec3::UnitZ(), shifted), test::howell_b3(1e5, 1e5, 1e6),
+              1e-9 * test::howell_b3(1e5, 1e5, 1e6));
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // The private X display: with $DISPLAY naming a server that is not there (as on CI, or after an
 // ssh session ended), ensure_display() starts Xvfb and points $DISPLAY at it, and VTK renders.
+#include "viz/offscreen_display.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -8,7 +10,6 @@
 #include "tests/scratch_dir.h"
 #include "tests/viz/png_inspect.h"
 #include "viz/charts.h"
-#include "viz/offscreen_display.h"
 
 namespace rad {
 namespace {

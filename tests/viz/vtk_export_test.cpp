@@ -1,6 +1,8 @@
 // VTK exports read back with VTK's own readers: the octree (.vtu), per-pixel statistics (.vti),
 // the patch mesh (.vtp) and its picture (PNG): cell counts, array names, values that can be
 // computed independently (energy from the faces, the pixel orientation).
+#include "viz/vtk_export.h"
+
 #include <gtest/gtest.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -15,17 +17,16 @@
 
 #include <filesystem>
 
-#include "radiosity/solution_faces.h"
-#include "scene/polygon_faces.h"
+#include "formats/solution_io.h"
 #include "localpass/local_pass.h"
+#include "radiosity/solution_faces.h"
 #include "radiosity/solver.h"
-#include "scene/ray_caster.h"
 #include "scene/error.h"
+#include "scene/polygon_faces.h"
+#include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 #include "tests/scratch_dir.h"
 #include "tests/viz/png_inspect.h"
-#include "formats/solution_io.h"
-#include "viz/vtk_export.h"
 
 namespace rad {
 namespace {
@@ -63,7 +64,8 @@ TEST(VtkExport, OctreeReadsBackAsHexahedraWithItsArrays) {
   long non_empty = 0;
   for (const Voxel& v : octree.voxels()) non_empty += v.item_count > 0;
   ASSERT_EQ(grid->GetNumberOfCells(), non_empty);
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) ASSERT_EQ(grid->GetCellType(c), VTK_HEXAHEDRON);
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+    ASSERT_EQ(grid->GetCellType(c), VTK_HEXAHEDRON);
   vtkCellData* data = grid->GetCellData();
   for (const char* name : {"bmax", "bmax_max", "patch_count", "energy", "level", "leaf"}) {
     ASSERT_NE(data->GetArray(name), nullptr) << name;
@@ -81,7 +83,8 @@ TEST(VtkExport, OctreeReadsBackAsHexahedraWithItsArrays) {
   }
   for (const EmittingFace& f : faces) {
     Vec3 twice_area = Vec3::Zero();
-    for (size_t i = 0; i < f.vertices.size(); ++i) twice_area += f.vertices[i].cross(f.vertices[(i + 1) % f.vertices.size()]);
+    for (size_t i = 0; i < f.vertices.size(); ++i)
+      twice_area += f.vertices[i].cross(f.vertices[(i + 1) % f.vertices.size()]);
     power += 0.5 * twice_area.norm() * f.exitance.maxCoeff();
   }
   EXPECT_EQ(leaves, static_cast<double>(octree.leaves().size()));
@@ -95,7 +98,8 @@ TEST(VtkExport, OctreeReadsBackAsHexahedraWithItsArrays) {
 TEST(VtkExport, PixelImageReadsBackRightSideUp) {
   const fs::path dir = test::scratch_dir("viz_pixels");
   // 3 x 2 pixels, rows from the top: the top-left pixel is 1.
-  write_pixel_image_vti(dir / "p.vti", 3, 2, {{"projected", {1, 2, 3, 4, 5, 6}}, {"bound", {0, 0, 0, 0, 0, 0.5}}});
+  write_pixel_image_vti(dir / "p.vti", 3, 2,
+                        {{"projected", {1, 2, 3, 4, 5, 6}}, {"bound", {0, 0, 0, 0, 0, 0.5}}});
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName((dir / "p.vti").c_str());
   reader->Update();
@@ -121,7 +125,8 @@ TEST(VtkExport, PatchMeshFileAndPictureFromTheSceneCamera) {
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName((dir / "patch_mesh.vtp").c_str());
   reader->Update();
-  EXPECT_EQ(reader->GetOutput()->GetNumberOfCells(), static_cast<vtkIdType>(s.solution.leaves().size()));
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfCells(),
+            static_cast<vtkIdType>(s.solution.leaves().size()));
   for (const char* name : {"radiosity", "emission", "reflectance", "level"}) {
     EXPECT_NE(reader->GetOutput()->GetCellData()->GetArray(name), nullptr) << name;
   }
