@@ -11,7 +11,7 @@ machine() {
   echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
   echo "- date: $(date -u +%Y-%m-%d)"
   local dirty=""
-  [ -z "$(git status --porcelain -- scene hemisphere radiosity octree localpass viz cli bench/*.cpp 2>/dev/null)" ] \
+  [ -z "$(git status --porcelain -- geometry scene hemisphere vertex radiosity octree localpass formats render experiments viz cli bench/*.cpp 2>/dev/null)" ] \
     || dirty=" plus uncommitted changes"
   echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
 }

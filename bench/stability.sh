@@ -13,7 +13,7 @@ out=bench/results/stability.md
   echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
   echo "- date: $(date -u +%Y-%m-%d)"
   dirty=""
-  [ -z "$(git status --porcelain -- scene hemisphere localpass bench/stability_bench.cpp tests/random_scenes.h 2>/dev/null)" ] \
+  [ -z "$(git status --porcelain -- geometry scene hemisphere vertex localpass bench/stability_bench.cpp tests/random_scenes.h 2>/dev/null)" ] \
     || dirty=" plus uncommitted changes"
   echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
   echo
