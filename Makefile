@@ -55,6 +55,10 @@ RESULTS_OUT ?= out/results
 CORNELL = data/cornell-box/scene.json
 results: build
 	@mkdir -p $(RESULTS_OUT) docs/images/results
+	@printf 'machine: %s cores, %s\ncommit: %s\ndate: %s\n' "$$(nproc)" \
+	  "$$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" \
+	  "$$(git rev-parse --short HEAD)$$(git diff --quiet HEAD -- . ':!docs' || echo ' (with uncommitted changes)')" \
+	  "$$(date -u +%Y-%m-%d)" > $(RESULTS_OUT)/run.txt
 	$(RADIOSITY) solve $(CORNELL) --patch-size 0.07 --refine-threshold 0 -o $(RESULTS_OUT)/solution.vtp
 	$(RADIOSITY) sweep $(CORNELL) --solution $(RESULTS_OUT)/solution.vtp --width 256 --height 256 \
 	  -o $(RESULTS_OUT)/sweep
@@ -67,10 +71,7 @@ results: build
 	  $(RESULTS_OUT)/sweep/error_vs_tolerance.png $(RESULTS_OUT)/sweep/time_vs_tolerance.png \
 	  $(RESULTS_OUT)/export/patch_mesh.png docs/images/results/
 	cp $(RESULTS_OUT)/error_map_hemisphere_T0.2.png $(RESULTS_OUT)/error_map_montecarlo_N1024.png docs/images/results/
-	@printf 'machine: %s cores, %s\ncommit: %s\ndate: %s\n' "$$(nproc)" \
-	  "$$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" \
-	  "$$(git rev-parse --short HEAD)$$(git diff --quiet HEAD -- . ':!docs' || echo ' (with uncommitted changes)')" \
-	  "$$(date -u +%Y-%m-%d)" > docs/images/results/run.txt
+	cp $(RESULTS_OUT)/run.txt docs/images/results/
 	python3 scripts/results_md.py > docs/results.md
 
 # The stability report: the degenerate scene families through both exact gatherers and Monte

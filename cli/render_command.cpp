@@ -118,8 +118,8 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
-  const std::optional<Method> method =
-      parse_method(o.method);  // the local pass's; else a plain render
+  // A method of the local pass (localpass/method.h), or one of the plain renders.
+  const std::optional<Method> method = parse_method(o.method);
   const bool local = method.has_value();
   const bool needs_solution = local || o.method == "patches";
   if (needs_solution && o.solution.empty()) {
