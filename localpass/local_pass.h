@@ -15,8 +15,9 @@
 /// term is at most its unoccluded one, U(A) = B(A) FF(x, A above the horizon), computed for the
 /// ordering anyway (it replaces eq. 8's box bound: tighter, and as certain). Hence
 ///   0 <= H - H_S <= R = sum over unselected faces of U(A),
-/// per channel. The hemisphere also knows the form factor C covered by the visible parts of the
-/// unoccluded and the selected faces; the unselected faces can only show outside them, so
+/// per channel. A gatherer that reports coverage (the hemisphere's) also gives the form factor C
+/// covered by the visible parts of the unoccluded and the selected faces; the unselected faces can
+/// only show outside them, so
 ///   H - H_S <= (largest unselected radiosity toward x) * (1 - C),
 /// the certified form of 004's eq. 10, and R is the smaller of the two. The error has one sign.
 /// The pass reports H_S + R/2 with the bound R/2, and stops when
@@ -43,9 +44,9 @@ struct LocalPassSettings {
 };
 
 struct LocalPassResult {
-  Rgb irradiance =
-      Rgb::Zero();          ///< H(x) estimate [W/m^2]: the exact part plus half the remainder bound
-  Rgb bound = Rgb::Zero();  ///< Certified: |H(x) - irradiance| <= bound, per channel
+  /// H(x) estimate [W/m^2]: the exact part plus half the remainder bound.
+  Rgb irradiance = Rgb::Zero();
+  Rgb bound = Rgb::Zero();   ///< Certified: |H(x) - irradiance| <= bound, per channel
   int gathered_exactly = 0;  ///< Faces gathered exactly (unoccluded or radiating in a gather)
   int unoccluded = 0;        ///< Of those, faces nothing can hide (Lambert's formula alone)
   int projected = 0;         ///< Faces projected (hemisphere: selected + possible occluders;
