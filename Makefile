@@ -40,6 +40,7 @@ test: build
 
 bench: build
 	@bash bench/run_all.sh $(BUILD_DIR)
+	@python3 scripts/results_md.py > docs/results.md  # it shows the stability table
 
 # The README's demo section: the real output of `make demo`, spliced in by scripts/readme_demo.py.
 readme: build
@@ -78,6 +79,7 @@ results: build
 # Carlo (bench/results/stability.md).
 stability: build
 	@bash bench/stability.sh $(BUILD_DIR)
+	@python3 scripts/results_md.py > docs/results.md  # it shows the stability table
 	@cat bench/results/stability.md
 
 # The manual's generated pages: the command reference from the executable's --help, and the
