@@ -6,6 +6,7 @@
 
 #include "geometry/clip.h"
 #include "geometry/plane.h"
+#include "hemisphere/blocker_surface.h"
 #include "hemisphere/visible_surface.h"
 
 namespace rad {
@@ -112,18 +113,10 @@ std::unique_ptr<ExactGatherSession> HemisphereGatherer::start(const Vec3& x, con
 
 void HemisphereGatherer::project(int k, const Vec3& x, const Vec3& n, void* visible) const {
   const EmittingFace& face = faces_[k];
-  const double offset = plane_offset_from(x, face.vertices.front(), face.normal);
-  if (std::abs(offset) <= in_plane_) return;  // x in its plane: no solid angle
-  std::vector<Vec3> relative;
-  for (const Vec3& v : face.vertices) relative.push_back(v - x);
-  const std::vector<Vec3> clipped = clip_to_halfspace(relative, Vec3::Zero(), n);
-  if (clipped.size() < 3) return;
-  const hemi::SphericalPolygon region(clipped);
-  if (region.empty()) return;
   // Occluder id = face index: faces are ordered by polygon, so coplanar overlapping polygons
   // resolve to the lower polygon index, as in the vertex tracer.
-  static_cast<hemi::VisibleSurface*>(visible)->insert(hemi::Occluder{k, face.normal, offset},
-                                                      region);
+  const auto p = project_onto_hemisphere(k, face.vertices, face.normal, x, n, in_plane_);
+  if (p) static_cast<hemi::VisibleSurface*>(visible)->insert(p->occluder, p->region);
 }
 
 }  // namespace rad

@@ -57,6 +57,41 @@ void VisibleSurface::insert_at(int node, int occupant, const SphericalPolygon& p
   }
 }
 
+double VisibleSurface::visible_form_factor(const Occluder& occluder,
+                                           const SphericalPolygon& region, const Vec3& n) const {
+  return visible_at(0, occluder, region, n);
+}
+
+double VisibleSurface::visible_at(int node, const Occluder& f, const SphericalPolygon& piece,
+                                  const Vec3& n) const {
+  if (piece.empty()) return 0;
+  while (!nodes_[node].leaf()) {  // as in insert_at
+    const int side = piece.side_of(nodes_[node].plane);
+    if (side == 0) break;
+    node = side > 0 ? nodes_[node].positive : nodes_[node].negative;
+  }
+  if (!nodes_[node].leaf()) {
+    const auto [pos, neg] = piece.split(nodes_[node].plane);
+    return visible_at(nodes_[node].positive, f, pos, n) +
+           visible_at(nodes_[node].negative, f, neg, n);
+  }
+  const int current = nodes_[node].occupant;
+  if (current < 0) return piece.form_factor(n);  // an empty cell: it would show
+  const Occluder& q = occluders_[current];
+  const Vec3 m = f.offset * q.normal - q.offset * f.normal;
+  const double scale = std::abs(f.offset) + std::abs(q.offset);
+  // The same plane: the lower id shows, and a polygon does not hide itself.
+  if (!(m.norm() > 1e-12 * scale)) return f.id <= q.id ? piece.form_factor(n) : 0;
+  const auto [a, b] = piece.split(m.normalized());
+  double sum = 0;
+  for (const SphericalPolygon* part : {&a, &b}) {
+    if (part->empty()) continue;
+    if (f.depth(part->interior_direction()) < q.depth(part->interior_direction()))
+      sum += part->form_factor(n);
+  }
+  return sum;
+}
+
 void VisibleSurface::carve(int node, int occupant, const SphericalPolygon& piece) {
   const int previous = nodes_[node].occupant;
   SphericalPolygon rest = nodes_[node].region;  // the leaf's cell; empty leaves carry none

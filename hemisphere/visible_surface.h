@@ -42,6 +42,14 @@ class VisibleSurface {
   /// fragment piece.
   void insert(const Occluder& occluder, const SphericalPolygon& region);
 
+  /// The form factor (receiver normal n) of the part of `region` of polygon `occluder` that
+  /// would show if it were inserted, without inserting it: the same walk and depth tests as
+  /// insert, summing the pieces that would be carved instead of carving them. In a cell that
+  /// shows a polygon in the same plane, it shows when its id is lower or the same (a polygon
+  /// does not hide itself).
+  double visible_form_factor(const Occluder& occluder, const SphericalPolygon& region,
+                             const Vec3& n) const;
+
   /// The visible fragments (cells that show a polygon), in a deterministic order.
   std::vector<Fragment> fragments() const;
   /// The occluder record of an inserted id.
@@ -62,6 +70,8 @@ class VisibleSurface {
   };
 
   void insert_at(int node, int occupant, const SphericalPolygon& piece);
+  double visible_at(int node, const Occluder& occluder, const SphericalPolygon& piece,
+                    const Vec3& n) const;
   /// Replaces leaf `node` by a subtree that carves `piece` (inside the leaf's cell) out of it:
   /// the piece's cell shows `occupant`, the rest keeps what the leaf showed.
   void carve(int node, int occupant, const SphericalPolygon& piece);

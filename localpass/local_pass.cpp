@@ -2,15 +2,48 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
 
 #include "geometry/lambert.h"
+#include "hemisphere/blocker_surface.h"
+#include "scene/polygon_faces.h"
 
 namespace rad {
 namespace {
 
-/// FF(x, part of the face above the horizon): Lambert's formula, for a face nothing hides.
-double unoccluded_form_factor(const EmittingFace& face, const Vec3& x, const Vec3& n) {
-  return point_polygon_form_factor(x, n, face.vertices);
+/// A term of the sum with its certified interval, per channel: lo <= exact term <= hi.
+struct Term {
+  double width = 0;  ///< max_c (hi - lo): the refinement order
+  int index = -1;    ///< Cluster (heap) or face (pending)
+  int blockers_begin = 0, blockers_end = 0;  ///< Its blockers in the call's pool; none: seen whole
+  Rgb lo = Rgb::Zero(), hi = Rgb::Zero();
+  bool seen_whole() const { return blockers_begin == blockers_end; }
+};
+/// Widest first; ties by index, so that the order (and the image) does not depend on threads.
+bool narrower(const Term& a, const Term& b) {
+  return a.width != b.width ? a.width < b.width : a.index > b.index;
+}
+
+/// Bounds on the point-to-area kernel k(y) = cos(theta_x)+ cos(theta_y) / (pi r^2) over the
+/// cluster's outline, for x at height h > 0 in front of its plane (cos+ = 0 below x's horizon).
+/// On the plane, cos(theta_y) r = h, so k = h max(0, n . (y - x)) / (pi r^4): the numerator is
+/// linear in y, so it ranges between its values at the outline's vertices; r lies between the
+/// distance from x to the outline's box (and h) and the largest vertex distance.
+std::pair<double, double> kernel_range(const Cluster& cluster, const Vec3& x, const Vec3& n,
+                                       double h) {
+  double up_min = std::numeric_limits<double>::infinity(), up_max = -up_min, r2_max = 0;
+  for (const Vec3& v : cluster.outline) {
+    const Vec3 w = v - x;
+    const double up = n.dot(w);
+    up_min = std::min(up_min, up), up_max = std::max(up_max, up);
+    r2_max = std::max(r2_max, w.squaredNorm());
+  }
+  const double r2_min = std::max(h * h, cluster.box.squaredExteriorDistance(x));
+  const double kmax = h * std::max(0.0, up_max) / (std::numbers::pi * r2_min * r2_min);
+  const double kmin = h * std::max(0.0, up_min) / (std::numbers::pi * r2_max * r2_max);
+  return {std::min(kmin, kmax), kmax};
 }
 
 }  // namespace
@@ -25,108 +58,223 @@ std::vector<OctreeItem> octree_items(const std::vector<EmittingFace>& faces) {
 LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
                      const LocalPassSettings& settings)
     : faces_(std::move(faces)),
+      tolerance_(scene.tolerance()),
+      faces_by_query_(method == Method::hemisphere),
       occlusion_culling_(settings.occlusion_culling),
       octree_(octree_items(faces_), settings.octree),
       gatherer_(make_exact_gatherer(method, scene, faces_)),
-      culling_(scene, faces_, octree_) {}
+      culling_(scene, faces_, octree_),
+      clusters_(faces_) {
+  blocker_pieces_.resize(scene.polygons.size());
+  for (EmittingFace& piece :
+       faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero())))
+    blocker_pieces_[piece.polygon].push_back(std::move(piece));
+}
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
+  return occlusion_culling_ ? gather_by_clusters(x, n, tolerance) : gather_plainly(x, n);
+}
+
+LocalPassResult LocalPass::gather_plainly(const Vec3& x, const Vec3& n) const {
   LocalPassResult result;
-  const OcclusionSplit split =
-      occlusion_culling_ ? culling_.split(x, n) : culling_.split_without_culling(x, n);
+  const OcclusionSplit split = culling_.split_without_culling(x, n);
+  if (split.shadowed.empty()) return result;
+  std::vector<int> occluders;
+  culling_.occluders(x, split.shadowed.front(), &occluders);
+  const auto session = gatherer_->start(x, n);
+  result.irradiance = session->step(split.shadowed.front().faces, occluders).irradiance;
+  result.gathered_exactly = static_cast<int>(split.shadowed.front().faces.size());
+  result.projected = session->projected();
+  result.gathers = 1;
+  return result;
+}
 
-  // Faces nothing can hide: exact by Lambert's formula alone.
-  Rgb unoccluded = Rgb::Zero();
-  double unoccluded_covered = 0;
-  for (const int f : split.unoccluded) {
-    const double ff = unoccluded_form_factor(faces_[f], x, n);
-    unoccluded += ff * faces_[f].exitance;
-    unoccluded_covered += ff;
-  }
-  result.gathered_exactly = result.unoccluded = static_cast<int>(split.unoccluded.size());
+LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
+                                              double tolerance) const {
+  LocalPassResult result;
+  const std::vector<Cluster>& clusters = clusters_.clusters();
+  const std::vector<int> candidates = culling_.candidates(x, n);
+  const bool exact_only = !(tolerance > 0);
 
-  // The other faces by leaf, in order of decreasing bound: the sum of their unoccluded terms.
-  struct Entry {
-    double key;
-    int group;
-    Rgb bound, bmax;
-  };
-  std::vector<Entry> entries;
-  for (size_t g = 0; g < split.shadowed.size(); ++g) {
-    Rgb bound = Rgb::Zero(), bmax = Rgb::Zero();
-    for (const int f : split.shadowed[g].faces) {
-      bound += unoccluded_form_factor(faces_[f], x, n) * faces_[f].exitance;
-      bmax = bmax.cwiseMax(faces_[f].exitance);
+  // The sum H = exact + sum of heap terms + sum of pending terms + gathered, each in its interval.
+  Rgb exact = Rgb::Zero();                                // faces seen whole: Lambert's formula
+  Rgb heap_lo = Rgb::Zero(), heap_hi = Rgb::Zero();       // clusters not yet refined
+  Rgb pending_hi = Rgb::Zero();                           // faces that may be hidden: [0, hi]
+  Rgb gathered = Rgb::Zero();                             // the exact gather's total so far
+  double heap_width = 0, pending_width = 0;               // sums of Term::width
+  std::vector<Term> heap, pending;
+  std::vector<int> pool, scratch;  // blocker lists of the terms
+  // The hemisphere method: what may be hidden is resolved by exact visibility queries against
+  // the blocking polygons, inserted as they are first named.
+  const bool queries = !blocker_pieces_.empty();
+  // Faces that may be hidden: by a query too (hemisphere), or by the method's own gather.
+  const bool faces_by_query = queries && faces_by_query_;
+  std::optional<BlockerSurface> blocker_surface;
+  std::vector<char> inserted;
+  const auto visible_form_factor = [&](const Cluster& cluster, int begin, int end) {
+    if (!blocker_surface) {
+      blocker_surface.emplace(x, n, tolerance_);
+      inserted.assign(blocker_pieces_.size(), 0);
     }
-    if (bound.maxCoeff() > 0)
-      entries.push_back({bound.maxCoeff(), static_cast<int>(g), bound, bmax});
-  }
-  std::sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
-    return a.key != b.key ? a.key > b.key
-                          : split.shadowed[a.group].leaf < split.shadowed[b.group].leaf;
-  });
-  // From entry i on: the sum of the bounds and the largest radiosity.
-  std::vector<Rgb> bound_sum(entries.size() + 1, Rgb::Zero()),
-      bmax_max(entries.size() + 1, Rgb::Zero());
-  for (size_t i = entries.size(); i-- > 0;) {
-    bound_sum[i] = bound_sum[i + 1] + entries[i].bound;
-    bmax_max[i] = bmax_max[i + 1].cwiseMax(entries[i].bmax);
+    for (int i = begin; i < end; ++i) {
+      if (inserted[pool[i]]) continue;
+      inserted[pool[i]] = 1;
+      for (const EmittingFace& piece : blocker_pieces_[pool[i]]) {
+        blocker_surface->add(piece.polygon, piece.vertices, piece.normal);
+        ++result.projected;
+      }
+    }
+    ++result.projected;
+    return blocker_surface->visible_form_factor(cluster.polygon, cluster.outline, cluster.normal);
+  };
+
+  // Adds cluster c, seen by x whole or through the blockers listed in pool[begin, end).
+  const auto add = [&](int c, int begin, int end) {
+    const Cluster& cluster = clusters[c];
+    const double ff = point_polygon_form_factor(x, n, cluster.outline);
+    if (!(ff > 0) || !(cluster.bmax.maxCoeff() > 0)) return;  // contributes nothing
+    Term t{0, c, begin, end, Rgb::Zero(), cluster.bmax * ff};
+    // What may be hidden, when queries are at hand: its visible form factor, exactly.
+    // (At tolerance 0 a partly hidden cluster is only a way down to its faces: no query.)
+    const bool query = !t.seen_whole() && queries &&
+                       (cluster.is_leaf() ? faces_by_query : !exact_only);
+    const double visible = query ? visible_form_factor(cluster, begin, end) : ff;
+    const bool known = t.seen_whole() || query;
+    if (cluster.is_leaf() && known) {  // exact: B FF(x, visible part of the face)
+      exact += faces_[cluster.face].exitance * visible;
+      ++result.gathered_exactly;
+      if (t.seen_whole()) ++result.unoccluded;
+      return;
+    }
+    if (cluster.is_leaf()) {
+      t.index = cluster.face;
+      t.width = t.hi.maxCoeff();
+      pending.push_back(t);
+      std::push_heap(pending.begin(), pending.end(), narrower);
+      pending_hi += t.hi, pending_width += t.width;
+      return;
+    }
+    if (exact_only && t.seen_whole()) {  // every face will be summed: sum them now
+      for (int i = 0; i < cluster.face_count; ++i) {
+        const int f = clusters_.faces()[cluster.first_face + i];
+        exact += faces_[f].exitance * point_polygon_form_factor(x, n, faces_[f].vertices);
+      }
+      result.gathered_exactly += cluster.face_count, result.unoccluded += cluster.face_count;
+      return;
+    }
+    ++result.clusters;
+    // Its faces' form factors sum to FF(x, their union) <= FF(x, outline) = ff; seen whole and
+    // filling its outline, the sum is also >= ff minus what the gap can subtend.
+    const double h = cluster.normal.dot(x - cluster.outline.front());
+    const double ff_lo = known && cluster.fills_outline
+                             ? std::max(0.0, visible - cluster.gap_area / (std::numbers::pi * h * h))
+                             : 0.0;
+    t.lo = cluster.bmin * ff_lo;  // zeroth order: bmin sum FF_A <= term <= bmax sum FF_A
+    t.hi = cluster.bmax * visible;
+    // First order: with kernel bounds kmin <= k <= kmax on the outline (kernel_range), the
+    // term sum B_A FF_A = bmean sum FF_A + sum (B_A - bmean) (FF_A - area_A kmid), since
+    // sum (B_A - bmean) area_A = 0; each |FF_A - area_A kmid| <= area_A (kmax - kmin) / 2.
+    const auto [kmin, kmax] = kernel_range(cluster, x, n, h);
+    const Rgb slack = cluster.bspread * (0.5 * cluster.face_area * (kmax - kmin));
+    if (t.seen_whole()) t.lo = t.lo.cwiseMax(cluster.bmean * ff_lo - slack);
+    // Hidden parts only lower the term: the upper end holds whether it is seen whole or not.
+    t.hi = t.hi.cwiseMin(cluster.bmean * ff + slack);
+    t.lo = t.lo.cwiseMin(t.hi);  // the two agree but for rounding
+    t.width = (t.hi - t.lo).maxCoeff();
+    heap.push_back(t);
+    std::push_heap(heap.begin(), heap.end(), narrower);
+    heap_lo += t.lo, heap_hi += t.hi, heap_width += t.width;
+  };
+  // Cluster c under a parent whose blockers are pool[begin, end): its own are among them.
+  const auto classify_and_add = [&](int c, int begin, int end) {
+    if (begin == end) return add(c, begin, end);
+    const Cluster& cluster = clusters[c];
+    // A face under a partly hidden cluster: a query with the parent's blockers (a superset of
+    // its own) is exact and costs about what the shafts would, so skip them.
+    if (cluster.is_leaf() && faces_by_query) return add(c, begin, end);
+    culling_.blockers(std::span<const int>(pool.data() + begin, pool.data() + end), x, cluster.box, cluster.outline, cluster.polygon, &scratch);
+    const int own = static_cast<int>(pool.size());
+    pool.insert(pool.end(), scratch.begin(), scratch.end());
+    add(c, own, static_cast<int>(pool.size()));
+  };
+  for (const int root : clusters_.roots()) {
+    const Cluster& cluster = clusters[root];
+    if (!culling_.in_front_of_polygon(cluster.polygon, x)) continue;  // it cannot light x
+    culling_.blockers(candidates, x, cluster.box, cluster.outline, cluster.polygon, &scratch);
+    const int own = static_cast<int>(pool.size());
+    pool.insert(pool.end(), scratch.begin(), scratch.end());
+    add(root, own, static_cast<int>(pool.size()));
   }
 
-  Rgb exact = unoccluded;
-  double covered = unoccluded_covered;  // form factor covered by visible parts gathered exactly
-  size_t next = 0;
-  // What the unselected faces can still add, certified (see the header).
-  const bool knows_coverage = gatherer_->reports_coverage();
-  const auto remainder = [&] {
-    Rgb r = bound_sum[next];
-    if (knows_coverage) r = r.cwiseMin(bmax_max[next] * std::max(0.0, 1 - covered));
-    return r;
-  };
   const auto done = [&] {
-    if (next == entries.size()) return true;
-    if (!(tolerance > 0)) return false;
-    const Rgb half = 0.5 * remainder();
-    return half.maxCoeff() <= tolerance * (exact + half).maxCoeff();
+    if (heap.empty() && pending.empty()) return true;
+    if (exact_only) return false;
+    const Rgb lo = exact + heap_lo + gathered, hi = exact + heap_hi + gathered + pending_hi;
+    return 0.5 * (hi - lo).maxCoeff() <= tolerance * (0.5 * (hi + lo)).maxCoeff();
   };
   std::unique_ptr<ExactGatherSession> session;
-  if (!entries.empty()) session = gatherer_->start(x, n);
   while (!done()) {
-    // Choose the next batch of leaf groups.
-    std::vector<int> batch;
-    if (!(tolerance > 0)) {
-      while (next < entries.size()) batch.push_back(entries[next++].group);
-    } else if (gatherer_->incremental()) {
-      // Projection is incremental, so batches may be small: enough to halve the bound sum.
-      const double target = 0.5 * bound_sum[next].maxCoeff();
-      do {
-        batch.push_back(entries[next++].group);
-      } while (next < entries.size() && bound_sum[next].maxCoeff() > target);
-    } else {
-      // Each step starts afresh: aim straight at the stopping rule with what is known of H,
-      // R <= 2 T H / (1 - T) (before the first step, H is at least the unoccluded part).
-      const double target = 2 * tolerance * exact.maxCoeff() / std::max(1 - tolerance, 1e-12);
-      do {
-        batch.push_back(entries[next++].group);
-      } while (next < entries.size() && bound_sum[next].maxCoeff() > target);
+    if (!heap.empty() &&
+        (exact_only || pending.empty() || heap.front().width >= pending.front().width)) {
+      // Refine the widest cluster: its children's intervals replace its own.
+      std::pop_heap(heap.begin(), heap.end(), narrower);
+      const Term t = heap.back();
+      heap.pop_back();
+      heap_lo -= t.lo, heap_hi -= t.hi, heap_width -= t.width;
+      for (const int child : clusters[t.index].children)
+        classify_and_add(child, t.blockers_begin, t.blockers_end);
+      continue;
     }
-    // Gather the batch's faces exactly, with whatever may hide them.
-    std::vector<int> radiating, occluders;
-    for (const int g : batch) {
-      const OcclusionSplit::Group& group = split.shadowed[g];
-      radiating.insert(radiating.end(), group.faces.begin(), group.faces.end());
+    // Gather the widest pending faces exactly, with whatever may hide them.
+    double target = 0;  // what the pending widths may sum to after this step
+    if (exact_only) {
+      target = -1;  // all of them, in one step
+    } else if (gatherer_->incremental()) {
+      target = 0.5 * pending_width;  // small steps cost nothing extra: halve them
+    } else {
+      // Each step starts afresh: aim straight at the stopping rule, with what is known of H
+      // (the whole width may be 2 T H / (1 - T); H is at least the lower end).
+      const double h_lo = (exact + heap_lo + gathered).maxCoeff();
+      target = std::max(0.0, 2 * tolerance * h_lo / std::max(1 - tolerance, 1e-12) - heap_width);
+    }
+    std::vector<OcclusionSplit::Group> groups;  // by polygon, for the occluder search
+    std::vector<int> group_polygon, radiating;
+    do {
+      std::pop_heap(pending.begin(), pending.end(), narrower);
+      const Term t = pending.back();
+      pending.pop_back();
+      pending_hi -= t.hi, pending_width -= t.width;
+      radiating.push_back(t.index);
+      const int polygon = faces_[t.index].polygon;
+      const size_t g = std::ranges::find(group_polygon, polygon) - group_polygon.begin();
+      if (g == group_polygon.size()) group_polygon.push_back(polygon), groups.emplace_back();
+      OcclusionSplit::Group* group = &groups[g];
+      group->faces.push_back(t.index);
+      group->box.extend(bounding_box(faces_[t.index].vertices));
+      group->blockers.insert(group->blockers.end(), pool.begin() + t.blockers_begin,
+                             pool.begin() + t.blockers_end);
+    } while (!pending.empty() && pending_width > target);
+    if (pending.empty()) pending_hi = Rgb::Zero(), pending_width = 0;  // no rounding residue
+    std::vector<int> occluders;
+    for (OcclusionSplit::Group& group : groups) {
+      std::ranges::sort(group.blockers);
+      group.blockers.erase(std::unique(group.blockers.begin(), group.blockers.end()),
+                           group.blockers.end());
       culling_.occluders(x, group, &occluders);
     }
+    if (!session) session = gatherer_->start(x, n);
+    gathered = session->step(radiating, occluders).irradiance;
     result.gathered_exactly += static_cast<int>(radiating.size());
-    result.voxels += static_cast<int>(batch.size());
     ++result.gathers;
-    const ExactGatherTotal total = session->step(radiating, occluders);
-    exact = unoccluded + total.irradiance;
-    if (total.covered) covered = unoccluded_covered + *total.covered;
   }
-  if (session) result.projected = session->projected();
-  result.bound = 0.5 * remainder();
-  result.irradiance = exact + result.bound;
+  if (session) result.projected += session->projected();
+
+  // The interval of the sum, from the terms themselves (the running sums drift by rounding).
+  Rgb lo = exact + gathered, hi = exact + gathered;
+  for (const Term& t : heap) lo += t.lo, hi += t.hi;
+  for (const Term& t : pending) hi += t.hi;
+  result.bound = 0.5 * (hi - lo);
+  result.irradiance = 0.5 * (hi + lo);
   return result;
 }
 

@@ -28,6 +28,8 @@
 
 #include "geometry/emitting_face.h"
 #include "geometry/exact_gatherer.h"
+#include "geometry/tolerance.h"
+#include "localpass/cluster_tree.h"
 #include "localpass/method.h"
 #include "localpass/occlusion_culling.h"
 #include "octree/octree.h"
@@ -51,7 +53,7 @@ struct LocalPassResult {
   int unoccluded = 0;        ///< Of those, faces nothing can hide (Lambert's formula alone)
   int projected = 0;         ///< Faces projected (hemisphere: selected + possible occluders;
                              ///< vertex tracing: the same, summed over its traces)
-  int voxels = 0;            ///< Leaf voxels selected for an exact gather
+  int clusters = 0;          ///< Cluster intervals computed (one Lambert formula each)
   int gathers = 0;           ///< Exact gathers run (0 when nothing can light x)
 };
 
@@ -73,11 +75,23 @@ class LocalPass {
   int face_count() const { return static_cast<int>(faces_.size()); }
 
  private:
+  LocalPassResult gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance) const;
+  /// No culling: every face that can light x radiates in one gather, every face may hide it.
+  LocalPassResult gather_plainly(const Vec3& x, const Vec3& n) const;
+
   std::vector<EmittingFace> faces_;
+  /// The scene's polygons as convex pieces, by polygon: the blockers of the visibility queries
+  /// (hemisphere/blocker_surface.h) that bound partly hidden clusters.
+  std::vector<std::vector<EmittingFace>> blocker_pieces_;
+  Tolerance tolerance_;
+  /// Hemisphere: partly hidden faces are queried too (the query is that method's projection).
+  /// Vertex tracing gathers them in steps of its own session.
+  bool faces_by_query_;
   bool occlusion_culling_;
   Octree octree_;
   std::unique_ptr<ExactGatherer> gatherer_;
   OcclusionCulling culling_;
+  ClusterTree clusters_;
 };
 
 }  // namespace rad

@@ -109,7 +109,7 @@ bool OcclusionCulling::can_light(int face, const Vec3& x, const Vec3& n) const {
   return std::ranges::any_of(f.vertices, [&](const Vec3& v) { return n.dot(v - x) > 0; });
 }
 
-void OcclusionCulling::filter(const std::vector<int>& candidates, const Vec3& x,
+void OcclusionCulling::filter(std::span<const int> candidates, const Vec3& x,
                               const Eigen::AlignedBox3d& box, const std::vector<Vec3>* face,
                               std::vector<int>* out) const {
   out->clear();
@@ -202,10 +202,7 @@ void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& gro
   }
 }
 
-OcclusionSplit OcclusionCulling::split(const Vec3& x, const Vec3& n) const {
-  OcclusionSplit split;
-  // Polygons that may hide anything: x off their plane (by more than half the gatherers'
-  // tolerance, so that every face the gatherers project is kept), part above the horizon.
+std::vector<int> OcclusionCulling::candidates(const Vec3& x, const Vec3& n) const {
   std::vector<int> candidates;
   for (size_t p = 0; p < polygons_.size(); ++p) {
     const PolygonData& polygon = polygons_[p];
@@ -214,6 +211,23 @@ OcclusionSplit OcclusionCulling::split(const Vec3& x, const Vec3& n) const {
       candidates.push_back(static_cast<int>(p));
     }
   }
+  return candidates;
+}
+
+void OcclusionCulling::blockers(std::span<const int> candidates, const Vec3& x,
+                                const Eigen::AlignedBox3d& box, const std::vector<Vec3>& outline,
+                                int polygon, std::vector<int>* out) const {
+  filter(candidates, x, box, &outline, out);
+  const std::vector<int>& coplanar = polygons_[polygon].coplanar_overlapping;
+  if (coplanar.empty()) return;
+  out->insert(out->end(), coplanar.begin(), coplanar.end());
+  std::ranges::sort(*out);
+  out->erase(std::unique(out->begin(), out->end()), out->end());
+}
+
+OcclusionSplit OcclusionCulling::split(const Vec3& x, const Vec3& n) const {
+  OcclusionSplit split;
+  const std::vector<int> candidates = this->candidates(x, n);
   if (!octree_.voxels().empty()) visit(0, candidates, x, n, &split);
   return split;
 }

@@ -20,6 +20,7 @@
 /// occluders. Tolerances: 1e-12 of the scene diagonal for "in the plane" and "separates" (the
 /// gatherers' own), 1e-9 of it as padding on the shafts (on the safe side).
 #include <Eigen/Geometry>
+#include <span>
 #include <vector>
 
 #include "octree/octree.h"
@@ -49,6 +50,19 @@ class OcclusionCulling {
                    const Octree& octree);
 
   OcclusionSplit split(const Vec3& x, const Vec3& n) const;
+  /// Polygons that may hide anything from (x, n): x off their plane (by more than half the
+  /// gatherers' tolerance, so that every face the gatherers project is kept), part above the
+  /// horizon. Polygon indices, ascending.
+  std::vector<int> candidates(const Vec3& x, const Vec3& n) const;
+  /// Polygons among `candidates` (ascending) that may hide part of the convex planar `outline`
+  /// of polygon `polygon` (in its box `box`) from x, ascending, plus the polygons coplanar with
+  /// it that overlap it (they hide each other by index). Empty: nothing hides any of it.
+  void blockers(std::span<const int> candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
+                const std::vector<Vec3>& outline, int polygon, std::vector<int>* out) const;
+  /// Whether x is strictly in front of the polygon's plane (the gatherers' test).
+  bool in_front_of_polygon(int polygon, const Vec3& x) const {
+    return polygons_[polygon].normal.dot(x) - polygons_[polygon].offset > in_plane_;
+  }
   /// The same faces with no culling: every one that can light x shadowed, in one group, with
   /// every face its occluder (the baseline the culling is measured against).
   OcclusionSplit split_without_culling(const Vec3& x, const Vec3& n) const;
@@ -66,7 +80,7 @@ class OcclusionCulling {
   };
   /// Polygons among `candidates` that may hide part of `box` (of `face`, when given, inside
   /// it) from x.
-  void filter(const std::vector<int>& candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
+  void filter(std::span<const int> candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
               const std::vector<Vec3>* face, std::vector<int>* out) const;
   void visit(int voxel, const std::vector<int>& candidates, const Vec3& x, const Vec3& n,
              OcclusionSplit* split) const;
