@@ -1,28 +1,34 @@
 #pragma once
 /// The error-bounded local pass (paper 004 §4.3, Fig. 6; DESIGN.md §3 eqs. 7-10): at a point,
-/// gather exactly from the solution's elements in order of decreasing bound, and stop as soon as
-/// what may remain is below the tolerance, with a certified bound on the error.
+/// sum the solution's faces' contributions H = sum_A B(A) FF(x, visible part of A) as a sum of
+/// terms, each known to lie in an interval, refine the widest term until the half-width of the
+/// total is within the tolerance, and report the middle with a certified bound.
 ///
-/// First the faces are split (localpass/occlusion_culling.h): those nothing can hide from x
-/// contribute B(A) FF(x, A above the horizon) exactly, by Lambert's formula, with no
-/// visibility work; the others, by leaf voxel, go to an exact gatherer together with the faces
-/// that may hide them (004's SolveVisibility, made exact by shafts).
+/// The terms are clusters of faces of one polygon (localpass/cluster_tree.h), from whole
+/// polygons down to single faces. Whether something may hide a cluster from x is the culling's
+/// question (localpass/occlusion_culling.h: the blocking polygons, by plane and shaft tests).
 ///
-/// Why the bound is certified. A gather lets only the selected faces radiate and sees every
-/// face that may hide them, so it returns exactly
-///   H_S = sum over selected faces A of B(A) FF(x, visible part of A),
-/// and H = H_S + sum over the other faces of the same terms, each >= 0. An unselected face's
-/// term is at most its unoccluded one, U(A) = B(A) FF(x, A above the horizon), computed for the
-/// ordering anyway (it replaces eq. 8's box bound: tighter, and as certain). Hence
-///   0 <= H - H_S <= R = sum over unselected faces of U(A),
-/// per channel. A gatherer that reports coverage (the hemisphere's) also gives the form factor C
-/// covered by the visible parts of the unoccluded and the selected faces; the unselected faces can
-/// only show outside them, so
-///   H - H_S <= (largest unselected radiosity toward x) * (1 - C),
-/// the certified form of 004's eq. 10, and R is the smaller of the two. The error has one sign.
-/// The pass reports H_S + R/2 with the bound R/2, and stops when
-///   max_c R_c / 2 <= tolerance * max_c (H_S + R/2)_c,
-/// so the relative error (against the brightest channel) is at most the tolerance.
+/// Why each interval holds (per channel; FF_A = FF(x, A above x's horizon), sum over the
+/// cluster's faces; F = FF(x, outline) by Lambert's formula; the faces do not overlap):
+///  - sum FF_A = FF(x, union of the faces) <= F, since the union lies in the convex outline.
+///    When the faces fill the outline, sum FF_A >= F - gap_area / (pi h^2), h the height of x
+///    over the plane (the kernel is at most 1/(pi r^2) <= 1/(pi h^2)).
+///  - zeroth order: bmin sum FF_A <= term <= bmax sum FF_A, when seen whole.
+///  - first order, seen whole: term = bmean sum FF_A + sum (B_A - bmean)(FF_A - area_A kmid),
+///    as sum (B_A - bmean) area_A = 0 for the area-weighted mean bmean; with the kernel in
+///    [kmin, kmax] on the outline, |FF_A - area_A kmid| <= area_A (kmax - kmin) / 2, so the
+///    term is within bspread face_area (kmax - kmin) / 2 of bmean sum FF_A.
+///  - hidden parts only lower a term, so every upper end above holds for any cluster; one that
+///    may be hidden gets the lower end 0, or, with V = FF(x, visible part of the outline) from
+///    an exact visibility query against its blocking polygons (hemisphere/blocker_surface.h),
+///    bmin (V - gap term) <= term <= bmax V (the same argument on the visible parts).
+///  - a single face: B FF(x, face) when seen whole (Lambert); B V by the query (hemisphere);
+///    otherwise [0, B FF] until vertex tracing gathers it exactly, in steps of one session
+///    with the faces of its blocking polygons that meet its shaft.
+/// With L and U the sums of the lower and upper ends, L <= H <= U; the pass reports (L + U) / 2
+/// with the bound (U - L) / 2 and stops when max_c bound_c <= tolerance * max_c value_c, so
+/// the relative error (against the brightest channel) is at most the tolerance. At tolerance 0
+/// every cluster is refined to its faces: every term is exact and the bound is 0.
 #include <memory>
 #include <vector>
 
