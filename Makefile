@@ -30,7 +30,7 @@ demo: build
 	$(RADIOSITY) render data/cornell-box/scene.json --method patches --solution $(DEMO_OUT)/solution.vtp \
 	  -o $(DEMO_OUT)/patches.exr
 	$(RADIOSITY) render data/cornell-box/scene.json --method hemisphere --solution $(DEMO_OUT)/solution.vtp \
-	  --width 64 --height 64 -o $(DEMO_OUT)/local-pass.exr
+	  --width 256 --height 256 -o $(DEMO_OUT)/local-pass.exr
 	$(RADIOSITY) export data/cornell-box/scene.json --solution $(DEMO_OUT)/solution.vtp --stats $(DEMO_OUT)/local-pass.stats.json \
 	  -o $(DEMO_OUT)/paraview
 	@echo "demo: in $(DEMO_OUT)/: solution.vtp, local-pass.exr/.png/.stats.json (the exact local pass at the default tolerance), patches.exr/.png, albedo, facing; paraview/ (patch mesh, octree, per-pixel stats of local-pass; open in ParaView) and paraview/patch_mesh.png"

@@ -38,8 +38,9 @@ int main(int argc, char** argv) {
   const auto t2 = std::chrono::steady_clock::now();
   const double build = std::chrono::duration<double>(t1 - t0).count();
   const double run = std::chrono::duration<double>(t2 - t1).count();
-  std::printf("build %.3f s; %g pixels, %.1f us/pixel; per pixel: clusters %.1f, exact %.1f "
-              "(unoccluded %.1f), gathers %.2f, projected %.1f\n",
-              build, pixels, 1e6 * run / pixels, clusters / pixels, exact / pixels,
-              unoccluded / pixels, gathers / pixels, projected / pixels);
+  std::printf(
+      "build %.3f s; %g pixels, %.1f us/pixel; per pixel: clusters %.1f, exact %.1f "
+      "(unoccluded %.1f), gathers %.2f, projected %.1f\n",
+      build, pixels, 1e6 * run / pixels, clusters / pixels, exact / pixels, unoccluded / pixels,
+      gathers / pixels, projected / pixels);
 }

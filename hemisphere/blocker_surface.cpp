@@ -7,7 +7,8 @@
 
 namespace rad {
 
-std::optional<HemisphereProjection> project_onto_hemisphere(int id, const std::vector<Vec3>& vertices,
+std::optional<HemisphereProjection> project_onto_hemisphere(int id,
+                                                            const std::vector<Vec3>& vertices,
                                                             const Vec3& normal, const Vec3& x,
                                                             const Vec3& n, double in_plane) {
   const double offset = plane_offset_from(x, vertices.front(), normal);

@@ -19,7 +19,8 @@ struct HemisphereProjection {
   hemi::Occluder occluder;
   hemi::SphericalPolygon region;
 };
-std::optional<HemisphereProjection> project_onto_hemisphere(int id, const std::vector<Vec3>& vertices,
+std::optional<HemisphereProjection> project_onto_hemisphere(int id,
+                                                            const std::vector<Vec3>& vertices,
                                                             const Vec3& normal, const Vec3& x,
                                                             const Vec3& n, double in_plane);
 

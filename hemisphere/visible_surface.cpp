@@ -57,8 +57,8 @@ void VisibleSurface::insert_at(int node, int occupant, const SphericalPolygon& p
   }
 }
 
-double VisibleSurface::visible_form_factor(const Occluder& occluder,
-                                           const SphericalPolygon& region, const Vec3& n) const {
+double VisibleSurface::visible_form_factor(const Occluder& occluder, const SphericalPolygon& region,
+                                           const Vec3& n) const {
   return visible_at(0, occluder, region, n);
 }
 

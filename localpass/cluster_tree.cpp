@@ -46,9 +46,9 @@ std::vector<int> convex_hull(const std::vector<Vec2>& points) {
     return points[a].x() != points[b].x() ? points[a].x() < points[b].x()
                                           : points[a].y() < points[b].y();
   });
-  order.erase(std::unique(order.begin(), order.end(),
-                          [&](int a, int b) { return points[a] == points[b]; }),
-              order.end());
+  order.erase(
+      std::unique(order.begin(), order.end(), [&](int a, int b) { return points[a] == points[b]; }),
+      order.end());
   if (order.size() < 3) return order;
   std::vector<int> hull(2 * order.size());
   size_t k = 0;
@@ -158,7 +158,8 @@ int ClusterTree::build(const Flat& flat, std::vector<int> members) {
   const size_t middle = members.size() / 2;
   std::vector<int> left, right, best_left, best_right;
   size_t best_balance = 0;
-  for (size_t r = 0; r < std::min<size_t>(members.size(), 8) && 4 * best_balance < members.size(); ++r) {
+  for (size_t r = 0; r < std::min<size_t>(members.size(), 8) && 4 * best_balance < members.size();
+       ++r) {
     // Faces at the median, then alternately above and below it.
     const size_t at = r % 2 == 0 ? middle + r / 2 : middle - (r + 1) / 2;
     if (at >= members.size()) continue;

@@ -22,7 +22,7 @@ namespace rad {
 
 struct Cluster {
   int polygon = -1;
-  int face = -1;                ///< A single face (a leaf of the tree), or -1.
+  int face = -1;                           ///< A single face (a leaf of the tree), or -1.
   std::array<int, 2> children = {-1, -1};  ///< Inner nodes: the two halves.
   std::vector<Vec3> outline;    ///< Convex hull of its faces' vertices, counter-clockwise
                                 ///< about the normal, with vertices taken from the faces.
@@ -34,9 +34,9 @@ struct Cluster {
   double gap_area = 0;  ///< |outline area - face area| plus 1e-12 of the outline's area.
   Rgb bmin = Rgb::Zero(), bmax = Rgb::Zero();  ///< Per channel over its faces' exitance.
   double face_area = 0;                        ///< Sum of its faces' areas
-  Rgb bmean = Rgb::Zero();    ///< Area-weighted mean exitance of its faces
+  Rgb bmean = Rgb::Zero();                     ///< Area-weighted mean exitance of its faces
   Rgb bspread = Rgb::Zero();  ///< max over its faces of |exitance - bmean|, per channel
-  Eigen::AlignedBox3d box;                     ///< Around the outline.
+  Eigen::AlignedBox3d box;    ///< Around the outline.
   int face_count = 0;
   int first_face = 0;  ///< Its faces are ClusterTree::faces()[first_face, first_face + face_count)
 

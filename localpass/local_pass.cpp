@@ -15,8 +15,8 @@ namespace {
 
 /// A term of the sum with its certified interval, per channel: lo <= exact term <= hi.
 struct Term {
-  double width = 0;  ///< max_c (hi - lo): the refinement order
-  int index = -1;    ///< Cluster (heap) or face (pending)
+  double width = 0;                          ///< max_c (hi - lo): the refinement order
+  int index = -1;                            ///< Cluster (heap) or face (pending)
   int blockers_begin = 0, blockers_end = 0;  ///< Its blockers in the call's pool; none: seen whole
   Rgb lo = Rgb::Zero(), hi = Rgb::Zero();
   bool seen_whole() const { return blockers_begin == blockers_end; }
@@ -97,11 +97,11 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
   const bool exact_only = !(tolerance > 0);
 
   // The sum H = exact + sum of heap terms + sum of pending terms + gathered, each in its interval.
-  Rgb exact = Rgb::Zero();                                // faces seen whole: Lambert's formula
-  Rgb heap_lo = Rgb::Zero(), heap_hi = Rgb::Zero();       // clusters not yet refined
-  Rgb pending_hi = Rgb::Zero();                           // faces that may be hidden: [0, hi]
-  Rgb gathered = Rgb::Zero();                             // the exact gather's total so far
-  double heap_width = 0, pending_width = 0;               // sums of Term::width
+  Rgb exact = Rgb::Zero();                           // faces seen whole: Lambert's formula
+  Rgb heap_lo = Rgb::Zero(), heap_hi = Rgb::Zero();  // clusters not yet refined
+  Rgb pending_hi = Rgb::Zero();                      // faces that may be hidden: [0, hi]
+  Rgb gathered = Rgb::Zero();                        // the exact gather's total so far
+  double heap_width = 0, pending_width = 0;          // sums of Term::width
   std::vector<Term> heap, pending;
   std::vector<int> pool, scratch;  // blocker lists of the terms
   // The hemisphere method: what may be hidden is resolved by exact visibility queries against
@@ -136,8 +136,8 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     Term t{0, c, begin, end, Rgb::Zero(), cluster.bmax * ff};
     // What may be hidden, when queries are at hand: its visible form factor, exactly.
     // (At tolerance 0 a partly hidden cluster is only a way down to its faces: no query.)
-    const bool query = !t.seen_whole() && queries &&
-                       (cluster.is_leaf() ? faces_by_query : !exact_only);
+    const bool query =
+        !t.seen_whole() && queries && (cluster.is_leaf() ? faces_by_query : !exact_only);
     const double visible = query ? visible_form_factor(cluster, begin, end) : ff;
     const bool known = t.seen_whole() || query;
     if (cluster.is_leaf() && known) {  // exact: B FF(x, visible part of the face)
@@ -166,9 +166,10 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     // Its faces' form factors sum to FF(x, their union) <= FF(x, outline) = ff; seen whole and
     // filling its outline, the sum is also >= ff minus what the gap can subtend.
     const double h = cluster.normal.dot(x - cluster.outline.front());
-    const double ff_lo = known && cluster.fills_outline
-                             ? std::max(0.0, visible - cluster.gap_area / (std::numbers::pi * h * h))
-                             : 0.0;
+    const double ff_lo =
+        known && cluster.fills_outline
+            ? std::max(0.0, visible - cluster.gap_area / (std::numbers::pi * h * h))
+            : 0.0;
     t.lo = cluster.bmin * ff_lo;  // zeroth order: bmin sum FF_A <= term <= bmax sum FF_A
     t.hi = cluster.bmax * visible;
     // First order: with kernel bounds kmin <= k <= kmax on the outline (kernel_range), the
@@ -192,7 +193,8 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     // A face under a partly hidden cluster: a query with the parent's blockers (a superset of
     // its own) is exact and costs about what the shafts would, so skip them.
     if (cluster.is_leaf() && faces_by_query) return add(c, begin, end);
-    culling_.blockers(std::span<const int>(pool.data() + begin, pool.data() + end), x, cluster.box, cluster.outline, cluster.polygon, &scratch);
+    culling_.blockers(std::span<const int>(pool.data() + begin, pool.data() + end), x, cluster.box,
+                      cluster.outline, cluster.polygon, &scratch);
     const int own = static_cast<int>(pool.size());
     pool.insert(pool.end(), scratch.begin(), scratch.end());
     add(c, own, static_cast<int>(pool.size()));

@@ -1,11 +1,10 @@
 // The local pass's clusters (localpass/cluster_tree.h): the tree covers every face once with
 // outlines that hold them, the solver's mesh gives outlines the faces fill, and a partly hidden
 // cluster's interval holds where the hidden part is the bright one.
-#include "localpass/cluster_tree.h"
-
 #include <gtest/gtest.h>
 
 #include "geometry/lambert.h"
+#include "localpass/cluster_tree.h"
 #include "localpass/local_pass.h"
 #include "scene/scene_loader.h"
 #include "tests/coarse_solution.h"
@@ -51,7 +50,7 @@ TEST(ClusterTree, CoversEveryFaceOnceWithOutlinesThatHoldThem) {
   EXPECT_GT(filled, 0.9 * inner) << filled << " of " << inner;
 }
 
-TEST(LocalPass, BoundHoldsWhereTheHiddenHalfOfAClusterIsTheBright)  {
+TEST(LocalPass, BoundHoldsWhereTheHiddenHalfOfAClusterIsTheBright) {
   // A wall of two faces, bright (1) and dark (0.2), and a screen that hides the bright one
   // from x. The exact value is the dark face's alone; a lower bound from the cluster's mean
   // radiosity (valid only for what is seen whole) would exceed it.
@@ -60,10 +59,11 @@ TEST(LocalPass, BoundHoldsWhereTheHiddenHalfOfAClusterIsTheBright)  {
     "objects": [
       {"name": "wall", "material": "white", "polygons": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]},
       {"name": "screen", "material": "white", "polygons": [[[-1,-1,5],[0.5,-1,5],[0.5,2,5],[-1,2,5]]]}
-    ]})", "two-faces.json");
+    ]})",
+                                  "two-faces.json");
   const auto face = [&](int polygon, std::vector<Vec3> vertices, double b) {
-    return EmittingFace{polygon, std::move(vertices), Rgb::Constant(b),
-                        std::vector<bool>(4, false), scene.polygons[polygon].normal};
+    return EmittingFace{polygon, std::move(vertices), Rgb::Constant(b), std::vector<bool>(4, false),
+                        scene.polygons[polygon].normal};
   };
   const std::vector<EmittingFace> faces = {
       face(0, {{0, 0, 0}, {0.5, 0, 0}, {0.5, 1, 0}, {0, 1, 0}}, 1.0),
