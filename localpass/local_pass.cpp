@@ -157,9 +157,11 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     if (exact_only && t.seen_whole()) {  // every face will be summed: sum them now
       for (int i = 0; i < cluster.face_count; ++i) {
         const int f = clusters_.faces()[cluster.first_face + i];
-        exact += faces_[f].exitance * point_polygon_form_factor(x, n, faces_[f].vertices);
+        const double face_ff = point_polygon_form_factor(x, n, faces_[f].vertices);
+        if (!(face_ff > 0) || !(faces_[f].exitance.maxCoeff() > 0)) continue;
+        exact += faces_[f].exitance * face_ff;
+        ++result.gathered_exactly, ++result.unoccluded;
       }
-      result.gathered_exactly += cluster.face_count, result.unoccluded += cluster.face_count;
       return;
     }
     ++result.clusters;

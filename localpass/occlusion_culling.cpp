@@ -86,19 +86,6 @@ OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<Emittin
       b.coplanar_overlapping.push_back(order[oi]);
     }
   }
-
-  // Voxels with such faces below them are never unoccluded wholesale.
-  voxel_has_coplanar_.assign(octree_.voxels().size(), 0);
-  for (int v = static_cast<int>(octree_.voxels().size()) - 1; v >= 0; --v) {
-    const Voxel& voxel = octree_.voxels()[v];
-    char any = 0;
-    for (const int f : voxel.items)
-      any |= !polygons_[faces_[f].polygon].coplanar_overlapping.empty();
-    if (!voxel.is_leaf()) {
-      for (int c = 0; c < 8; ++c) any |= voxel_has_coplanar_[voxel.first_child + c];
-    }
-    voxel_has_coplanar_[v] = any;
-  }
 }
 
 bool OcclusionCulling::can_light(int face, const Vec3& x, const Vec3& n) const {
@@ -137,48 +124,6 @@ void OcclusionCulling::filter(std::span<const int> candidates, const Vec3& x,
   const Shaft shaft(x, box, pad_);
   std::erase_if(*out,
                 [&](int p) { return !shaft.may_meet(polygons_[p].vertices, polygons_[p].box); });
-}
-
-void OcclusionCulling::visit(int v, const std::vector<int>& candidates, const Vec3& x,
-                             const Vec3& n, OcclusionSplit* split) const {
-  const Voxel& voxel = octree_.voxels()[v];
-  if (voxel.item_count == 0) return;
-  const Vec3 centre = voxel.bounds.center(), half = 0.5 * voxel.bounds.sizes();
-  if (n.dot(centre - x) + n.cwiseAbs().dot(half) <= 0) return;  // wholly below the horizon
-  std::vector<int> passing;
-  filter(candidates, x, voxel.bounds, nullptr, &passing);
-  if (passing.empty() && !voxel_has_coplanar_[v]) {
-    for (const int f : octree_.items_below(v)) {
-      if (can_light(f, x, n)) split->unoccluded.push_back(f);
-    }
-    return;
-  }
-  if (!voxel.is_leaf()) {
-    for (int c = 0; c < 8; ++c) visit(voxel.first_child + c, passing, x, n, split);
-    return;
-  }
-  OcclusionSplit::Group group;
-  group.leaf = v;
-  std::vector<int> blockers, mine;
-  Eigen::AlignedBox3d group_box;
-  for (const int f : voxel.items) {
-    if (!can_light(f, x, n)) continue;
-    filter(passing, x, face_boxes_[f], &faces_[f].vertices, &mine);
-    for (const int q : polygons_[faces_[f].polygon].coplanar_overlapping) mine.push_back(q);
-    if (mine.empty()) {
-      split->unoccluded.push_back(f);
-      continue;
-    }
-    group.faces.push_back(f);
-    group_box.extend(face_boxes_[f]);
-    blockers.insert(blockers.end(), mine.begin(), mine.end());
-  }
-  if (group.faces.empty()) return;
-  std::ranges::sort(blockers);
-  blockers.erase(std::unique(blockers.begin(), blockers.end()), blockers.end());
-  group.blockers = std::move(blockers);
-  group.box = group_box;
-  split->shadowed.push_back(std::move(group));
 }
 
 void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& group,
@@ -225,17 +170,9 @@ void OcclusionCulling::blockers(std::span<const int> candidates, const Vec3& x,
   out->erase(std::unique(out->begin(), out->end()), out->end());
 }
 
-OcclusionSplit OcclusionCulling::split(const Vec3& x, const Vec3& n) const {
-  OcclusionSplit split;
-  const std::vector<int> candidates = this->candidates(x, n);
-  if (!octree_.voxels().empty()) visit(0, candidates, x, n, &split);
-  return split;
-}
-
 OcclusionSplit OcclusionCulling::split_without_culling(const Vec3& x, const Vec3& n) const {
   OcclusionSplit split;
   OcclusionSplit::Group group;
-  group.leaf = 0;  // one group: the root
   for (size_t f = 0; f < faces_.size(); ++f) {
     if (can_light(static_cast<int>(f), x, n)) group.faces.push_back(static_cast<int>(f));
   }

@@ -1,6 +1,6 @@
 #pragma once
-/// Which faces can be hidden from a point, and by what (shaft culling, Haines and Wallace 1994,
-/// over the local pass's octree). Most of what a point sees in a room is seen whole: the walls
+/// Which faces can be hidden from a point, and by what (shaft culling, Haines and Wallace 1994).
+/// Most of what a point sees in a room is seen whole: the walls
 /// of a box never hide each other from inside it. Such faces need no visibility work at all:
 /// their contribution is the unoccluded form factor of their part above the horizon (Lambert's
 /// formula, exact). Only faces that something may hide go to an exact gatherer, together with
@@ -11,11 +11,11 @@
 ///  - x is off g's plane (a plane through x subtends nothing; both gatherers skip such faces),
 ///  - g's plane separates x from y, so it separates x from the box around f, and
 ///  - g meets the shaft from x to f's box (the hull of x and the box; localpass/shaft.h),
-/// and all three hold as well for g's polygon and any box containing f's box. The split walks
-/// the octree with the polygons that pass these tests for the voxel (a voxel's boxes contain its
-/// children's), down to the faces. A face no polygon passes for is unoccluded; otherwise its
-/// occluders are the faces of the passing polygons that meet the shaft. Those are listed only
-/// for the groups a gather takes (at a tolerance, most are never taken). Coplanar overlapping
+/// and all three hold as well for g's polygon, for any convex outline holding f and any box
+/// holding the outline. The local pass asks this of its clusters (blockers), from the polygons
+/// that passed for the parent cluster down to the faces. A cluster no polygon passes for is
+/// seen whole; for a face that may be hidden, its occluders are the faces of the passing
+/// polygons that meet the shaft (found through the octree; vertex tracing's). Coplanar overlapping
 /// polygons hide each other by index in both gatherers, so they are always each other's
 /// occluders. Tolerances: 1e-12 of the scene diagonal for "in the plane" and "separates" (the
 /// gatherers' own), 1e-9 of it as padding on the shafts (on the safe side).
@@ -30,12 +30,9 @@
 namespace rad {
 
 struct OcclusionSplit {
-  /// Faces that can light x (x in front, part above the horizon) and that nothing can hide.
-  std::vector<int> unoccluded;
-  /// Faces that can light x and may be hidden, by leaf voxel, with the polygons that may hide
-  /// one of them (OcclusionCulling::occluders lists their faces).
+  /// Faces that can light x and may be hidden, with the polygons that may hide one of them
+  /// (OcclusionCulling::occluders lists their faces).
   struct Group {
-    int leaf = -1;
     std::vector<int> faces;
     std::vector<int> blockers;  ///< Polygon indices, sorted
     Eigen::AlignedBox3d box;    ///< Around the faces
@@ -49,7 +46,6 @@ class OcclusionCulling {
   OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces,
                    const Octree& octree);
 
-  OcclusionSplit split(const Vec3& x, const Vec3& n) const;
   /// Polygons that may hide anything from (x, n): x off their plane (by more than half the
   /// gatherers' tolerance, so that every face the gatherers project is kept), part above the
   /// horizon. Polygon indices, ascending.
@@ -82,15 +78,12 @@ class OcclusionCulling {
   /// it) from x.
   void filter(std::span<const int> candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
               const std::vector<Vec3>* face, std::vector<int>* out) const;
-  void visit(int voxel, const std::vector<int>& candidates, const Vec3& x, const Vec3& n,
-             OcclusionSplit* split) const;
   bool can_light(int face, const Vec3& x, const Vec3& n) const;
 
   const std::vector<EmittingFace>& faces_;
   const Octree& octree_;
   std::vector<PolygonData> polygons_;
   std::vector<Eigen::AlignedBox3d> face_boxes_;
-  std::vector<char> voxel_has_coplanar_;  ///< Per voxel: some face below has coplanar overlaps
   double in_plane_ = 0, pad_ = 0;
 };
 
