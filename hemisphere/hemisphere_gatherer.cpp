@@ -102,7 +102,9 @@ HemisphereGather HemisphereGatherer::gather(const Vec3& x, const Vec3& n,
     const bool front = is_in_front_of(x, face.vertices.front(), face.normal);
     result.covered += ff;
     if (front) result.irradiance += ff * face.exitance;
-    if (keep_fragments) result.fragments.push_back({face.polygon, ff, front, f.region.vertices()});
+    if (keep_fragments)
+      result.fragments.push_back(
+          {face.polygon, ff, front, {f.region.vertices().begin(), f.region.vertices().end()}});
   }
   return result;
 }

@@ -12,7 +12,7 @@ constexpr double kOnPlane = 1e-15;  ///< |m . v| below this: v is on the plane (
 
 /// Twice the area-like measure of a convex spherical fan: sum of triple products. Zero for
 /// polygons that have collapsed onto a great circle.
-double fan_measure(const std::vector<Vec3>& v) {
+double fan_measure(const Directions& v) {
   double sum = 0;
   for (size_t i = 1; i + 1 < v.size(); ++i) sum += v[0].dot(v[i].cross(v[i + 1]));
   return sum;
@@ -23,8 +23,7 @@ bool coincident(const Vec3& a, const Vec3& b) { return (a - b).squaredNorm() <= 
 }  // namespace
 
 SphericalPolygon::SphericalPolygon(const std::vector<Vec3>& directions) {
-  std::vector<Vec3> unit;
-  unit.reserve(directions.size());
+  Directions unit;
   for (const Vec3& d : directions) {
     const double len = d.norm();
     if (!(len > 0)) continue;
@@ -37,7 +36,7 @@ SphericalPolygon::SphericalPolygon(const std::vector<Vec3>& directions) {
   if (!(std::abs(measure) > 1e-28)) return;  // collapsed onto a great circle: no area
   if (measure < 0) std::reverse(unit.begin(), unit.end());
   // Edge planes from the input directions; the caller's polygon edges are not degenerate.
-  std::vector<Vec3> normals;
+  Directions normals;
   for (size_t i = 0; i < unit.size(); ++i)
     normals.push_back(unit[i].cross(unit[(i + 1) % unit.size()]).normalized());
   for (const Vec3& n : normals) {
@@ -47,10 +46,10 @@ SphericalPolygon::SphericalPolygon(const std::vector<Vec3>& directions) {
   normals_ = std::move(normals);
 }
 
-SphericalPolygon::SphericalPolygon(std::vector<Vec3> vertices, std::vector<Vec3> normals) {
+SphericalPolygon::SphericalPolygon(const Directions& vertices, const Directions& normals) {
   // Merge coincident consecutive vertices: the zero-length edge between them disappears, the
   // merged vertex keeps the later vertex's outgoing edge.
-  std::vector<Vec3> v, n;
+  Directions v, n;
   for (size_t i = 0; i < vertices.size(); ++i) {
     if (!v.empty() && coincident(vertices[i], v.back())) {
       n.back() = normals[i];
@@ -104,7 +103,7 @@ int SphericalPolygon::side_of(const Vec3& m) const {
 
 std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3& m) const {
   const size_t count = vertices_.size();
-  std::vector<double> s(count);
+  boost::container::small_vector<double, 8> s(count);
   bool any_pos = false, any_neg = false;
   for (size_t i = 0; i < count; ++i) {
     s[i] = m.dot(vertices_[i]);
@@ -117,7 +116,7 @@ std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3
 
   // Sutherland-Hodgman for both sides at once. Each output vertex carries the normal of its
   // outgoing edge: an original edge keeps its normal, the cut gets +m (positive part) or -m.
-  std::vector<Vec3> pos_v, pos_n, neg_v, neg_n;
+  Directions pos_v, pos_n, neg_v, neg_n;
   for (size_t i = 0; i < count; ++i) {
     const size_t j = (i + 1) % count;
     const Vec3& vi = vertices_[i];
@@ -155,8 +154,7 @@ std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3
       }
     }
   }
-  return {SphericalPolygon(std::move(pos_v), std::move(pos_n)),
-          SphericalPolygon(std::move(neg_v), std::move(neg_n))};
+  return {SphericalPolygon(pos_v, pos_n), SphericalPolygon(neg_v, neg_n)};
 }
 
 Vec3 SphericalPolygon::interior_direction() const {

@@ -2,6 +2,7 @@
 /// Convex spherical polygons around a point x (x at the origin): the projection of a planar
 /// convex polygon onto the unit sphere (paper 004 §3; DESIGN.md §4). Every edge is the arc cut
 /// by a plane through x; side tests are one dot product with that plane's normal.
+#include <boost/container/small_vector.hpp>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -9,6 +10,11 @@
 #include "geometry/vec.h"
 
 namespace rad::hemi {
+
+/// Unit directions of a spherical polygon, held inline up to 8 (a clipped quad rarely has
+/// more): the visible-surface walk splits polygons at every node, and a heap allocation per
+/// split was a fifth of the local pass's time.
+using Directions = boost::container::small_vector<Vec3, 8>;
 
 /// A convex spherical polygon: unit vertices in order, every edge a minor arc, the whole inside
 /// an open hemisphere. Each edge also stores the unit normal of its plane through x, pointing
@@ -24,7 +30,7 @@ class SphericalPolygon {
   /// orientation; near-duplicate consecutive directions are merged.
   explicit SphericalPolygon(const std::vector<Vec3>& directions);
 
-  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const Directions& vertices() const { return vertices_; }
   bool empty() const { return vertices_.size() < 3; }
 
   /// The parts on the positive (m . d >= 0) and negative side of the plane through x with unit
@@ -56,10 +62,10 @@ class SphericalPolygon {
  private:
   /// Takes vertices with their outgoing edges' normals as built by split(); merges
   /// coincident vertices (keeping the later outgoing normal) and empties degenerate results.
-  SphericalPolygon(std::vector<Vec3> vertices, std::vector<Vec3> normals);
+  SphericalPolygon(const Directions& vertices, const Directions& normals);
 
-  std::vector<Vec3> vertices_;
-  std::vector<Vec3> normals_;  ///< normals_[i]: plane of the edge vertices_[i] -> vertices_[i+1]
+  Directions vertices_;
+  Directions normals_;  ///< normals_[i]: plane of the edge vertices_[i] -> vertices_[i+1]
 };
 
 /// Where the minor arcs a0-a1 and b0-b1 (unit vectors, each arc shorter than pi) cross: the

@@ -13,7 +13,8 @@ struct ClusterTree::Flat {
   const std::vector<EmittingFace>* faces = nullptr;
   Vec3 normal = Vec3::UnitZ();
   std::vector<std::vector<Vec2>> points;  ///< Per face (indexed like faces), its vertices in 2D
-  std::vector<Vec2> centroids;
+  std::vector<Vec2> centroids;  ///< Per face, the mean of its vertices (to order and split)
+  std::vector<Vec3> centers;    ///< Per face, its area centroid
   std::vector<double> areas;
   double eps = 0;  ///< "On the line": 1e-9 of the polygon's extent
 
@@ -65,6 +66,21 @@ std::vector<int> convex_hull(const std::vector<Vec2>& points) {
   return hull;
 }
 
+/// The area centroid of a convex polygon, by its fan of triangles (the vertex mean if it has
+/// no area).
+Vec3 area_centroid(const std::vector<Vec3>& vertices) {
+  Vec3 sum = Vec3::Zero(), mean = Vec3::Zero();
+  double area = 0;
+  for (const Vec3& v : vertices) mean += v;
+  mean /= static_cast<double>(vertices.size());
+  for (size_t i = 1; i + 1 < vertices.size(); ++i) {
+    const double a = (vertices[i] - vertices[0]).cross(vertices[i + 1] - vertices[0]).norm();
+    sum += a * (vertices[0] + vertices[i] + vertices[i + 1]) / 3;
+    area += a;
+  }
+  return area > 0 ? Vec3(sum / area) : mean;
+}
+
 }  // namespace
 
 ClusterTree::ClusterTree(const std::vector<EmittingFace>& faces) {
@@ -75,6 +91,7 @@ ClusterTree::ClusterTree(const std::vector<EmittingFace>& faces) {
   flat.faces = &faces;
   flat.points.resize(faces.size());
   flat.centroids.resize(faces.size());
+  flat.centers.resize(faces.size());
   flat.areas.resize(faces.size());
   for (auto& [polygon, members] : by_polygon) {
     const Vec3 normal = faces[members.front()].normal;
@@ -92,6 +109,7 @@ ClusterTree::ClusterTree(const std::vector<EmittingFace>& faces) {
       }
       flat.centroids[f] = sum / static_cast<double>(p.size());
       flat.areas[f] = polygon_area(p);
+      flat.centers[f] = area_centroid(faces[f].vertices);
     }
     flat.eps = 1e-9 * extent.sizes().norm();
     roots_.push_back(build(flat, members));
@@ -141,6 +159,18 @@ int ClusterTree::build(const Flat& flat, std::vector<int> members) {
     c.face_area = face_area;
     c.bmean = face_area > 0 ? Rgb(power / face_area) : c.bmax;
     c.bspread = (c.bmax - c.bmean).cwiseMax(c.bmean - c.bmin).cwiseMax(0.0);
+    if (face_area > 0) {
+      for (const int f : members) c.center += flat.areas[f] * flat.centers[f];
+      c.center /= face_area;
+    } else {
+      c.center = flat.centers[members.front()];
+    }
+    for (const int f : members) {
+      const Rgb deviation = faces[f].exitance - c.bmean;
+      c.babs += flat.areas[f] * deviation.cwiseAbs();
+      c.moment += flat.areas[f] * (flat.centers[f] - c.center) * deviation.transpose();
+    }
+    for (const Vec3& v : c.outline) c.radius = std::max(c.radius, (v - c.center).norm());
     c.box = bounding_box(c.outline);
   }
   if (members.size() == 1) return index;

@@ -36,7 +36,14 @@ struct Cluster {
   double face_area = 0;                        ///< Sum of its faces' areas
   Rgb bmean = Rgb::Zero();                     ///< Area-weighted mean exitance of its faces
   Rgb bspread = Rgb::Zero();  ///< max over its faces of |exitance - bmean|, per channel
-  Eigen::AlignedBox3d box;    ///< Around the outline.
+  /// sum over its faces of area |exitance - bmean|, per channel (<= bspread face_area)
+  Rgb babs = Rgb::Zero();
+  Vec3 center = Vec3::Zero();  ///< Area centroid of its faces (inside the outline)
+  double radius = 0;           ///< Largest distance from the center to the outline
+  /// Column c: sum over its faces of area (exitance_c - bmean_c) (centroid - center), the
+  /// first moment of its radiosity about the mean (zero for a single face).
+  Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
+  Eigen::AlignedBox3d box;  ///< Around the outline.
   int face_count = 0;
   int first_face = 0;  ///< Its faces are ClusterTree::faces()[first_face, first_face + face_count)
 

@@ -8,6 +8,7 @@
 
 #include "geometry/lambert.h"
 #include "hemisphere/blocker_surface.h"
+#include "localpass/cluster_bounds.h"
 #include "scene/polygon_faces.h"
 
 namespace rad {
@@ -24,26 +25,6 @@ struct Term {
 /// Widest first; ties by index, so that the order (and the image) does not depend on threads.
 bool narrower(const Term& a, const Term& b) {
   return a.width != b.width ? a.width < b.width : a.index > b.index;
-}
-
-/// Bounds on the point-to-area kernel k(y) = cos(theta_x)+ cos(theta_y) / (pi r^2) over the
-/// cluster's outline, for x at height h > 0 in front of its plane (cos+ = 0 below x's horizon).
-/// On the plane, cos(theta_y) r = h, so k = h max(0, n . (y - x)) / (pi r^4): the numerator is
-/// linear in y, so it ranges between its values at the outline's vertices; r lies between the
-/// distance from x to the outline's box (and h) and the largest vertex distance.
-std::pair<double, double> kernel_range(const Cluster& cluster, const Vec3& x, const Vec3& n,
-                                       double h) {
-  double up_min = std::numeric_limits<double>::infinity(), up_max = -up_min, r2_max = 0;
-  for (const Vec3& v : cluster.outline) {
-    const Vec3 w = v - x;
-    const double up = n.dot(w);
-    up_min = std::min(up_min, up), up_max = std::max(up_max, up);
-    r2_max = std::max(r2_max, w.squaredNorm());
-  }
-  const double r2_min = std::max(h * h, cluster.box.squaredExteriorDistance(x));
-  const double kmax = h * std::max(0.0, up_max) / (std::numbers::pi * r2_min * r2_min);
-  const double kmin = h * std::max(0.0, up_min) / (std::numbers::pi * r2_max * r2_max);
-  return {std::min(kmin, kmax), kmax};
 }
 
 }  // namespace
@@ -174,14 +155,31 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
             : 0.0;
     t.lo = cluster.bmin * ff_lo;  // zeroth order: bmin sum FF_A <= term <= bmax sum FF_A
     t.hi = cluster.bmax * visible;
-    // First order: with kernel bounds kmin <= k <= kmax on the outline (kernel_range), the
-    // term sum B_A FF_A = bmean sum FF_A + sum (B_A - bmean) (FF_A - area_A kmid), since
+    // First order: with kmin <= k <= kmax on the outline (cluster_bounds.h), the term
+    // sum B_A FF_A = bmean sum FF_A + sum (B_A - bmean) (FF_A - area_A kmid), since
     // sum (B_A - bmean) area_A = 0; each |FF_A - area_A kmid| <= area_A (kmax - kmin) / 2.
-    const auto [kmin, kmax] = kernel_range(cluster, x, n, h);
-    const Rgb slack = cluster.bspread * (0.5 * cluster.face_area * (kmax - kmin));
+    const KernelBounds kernel = kernel_bounds(cluster, x, n, h);
+    const Rgb slack = cluster.babs * (0.5 * (kernel.kmax - kernel.kmin));
+    if (kernel.above_horizon) {
+      // Second order: with k = k(c) + g . (y - c) + R on the outline, |R| <= remainder,
+      // FF_A - area_A k(c) = g . area_A (c_A - c) + integral of R over A, so the term is
+      // bmean sum FF_A + g . moment within babs remainder (again sum (B_A - bmean) area_A = 0).
+      const Rgb second = cluster.babs * kernel.remainder;
+      const Rgb linear = (kernel.gradient.transpose() * cluster.moment).transpose();
+      if (t.seen_whole()) t.lo = t.lo.cwiseMax(cluster.bmean * ff_lo + linear - second);
+      t.hi = t.hi.cwiseMin(cluster.bmean * ff + linear + second);
+    }
     if (t.seen_whole()) t.lo = t.lo.cwiseMax(cluster.bmean * ff_lo - slack);
     // Hidden parts only lower the term: the upper end holds whether it is seen whole or not.
     t.hi = t.hi.cwiseMin(cluster.bmean * ff + slack);
+    if (query) {
+      // Partly hidden, with V = visible known: the term is bmean sum FF'_A + sum (B_A - bmean)
+      // FF'_A over the faces' visible parts, with sum FF'_A in [ff_lo, V] and each
+      // FF'_A <= area_A kmax, so it is within babs kmax of bmean sum FF'_A.
+      const Rgb spread = cluster.babs * kernel.kmax;
+      t.lo = t.lo.cwiseMax(cluster.bmean * ff_lo - spread);
+      t.hi = t.hi.cwiseMin(cluster.bmean * visible + spread);
+    }
     t.lo = t.lo.cwiseMin(t.hi);  // the two agree but for rounding
     t.width = (t.hi - t.lo).maxCoeff();
     heap.push_back(t);

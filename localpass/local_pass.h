@@ -17,11 +17,17 @@
 ///  - first order, seen whole: term = bmean sum FF_A + sum (B_A - bmean)(FF_A - area_A kmid),
 ///    as sum (B_A - bmean) area_A = 0 for the area-weighted mean bmean; with the kernel in
 ///    [kmin, kmax] on the outline, |FF_A - area_A kmid| <= area_A (kmax - kmin) / 2, so the
-///    term is within bspread face_area (kmax - kmin) / 2 of bmean sum FF_A.
+///    term is within babs (kmax - kmin) / 2 of bmean sum FF_A (babs = sum |B_A - bmean| area_A).
+///  - second order, seen whole and wholly above x's horizon: with the kernel's expansion
+///    k(y) = k(c) + g . (y - c) + R(y), |R| <= remainder on the outline (localpass/
+///    cluster_bounds.h), FF_A - area_A k(c) = g . area_A (c_A - c) + integral of R over A, so the
+///    term is within babs remainder of bmean sum FF_A + g . moment (moment = sum (B_A - bmean)
+///    area_A (c_A - c), per channel).
 ///  - hidden parts only lower a term, so every upper end above holds for any cluster; one that
 ///    may be hidden gets the lower end 0, or, with V = FF(x, visible part of the outline) from
 ///    an exact visibility query against its blocking polygons (hemisphere/blocker_surface.h),
-///    bmin (V - gap term) <= term <= bmax V (the same argument on the visible parts).
+///    bmin (V - gap term) <= term <= bmax V (the same argument on the visible parts), and the
+///    term is within babs kmax of bmean sum FF'_A (FF'_A of the visible parts, <= area_A kmax).
 ///  - a single face: B FF(x, face) when seen whole (Lambert); B V by the query (hemisphere);
 ///    otherwise [0, B FF] until vertex tracing gathers it exactly, in steps of one session
 ///    with the faces of its blocking polygons that meet its shaft.

@@ -7,7 +7,7 @@ packages=(
   cmake g++ make pkg-config
   libeigen3-dev libopenmesh-dev libembree-dev libtbb-dev
   libvtk9-dev libopenexr-dev python3-imath
-  libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libboost-dev
   xvfb xauth
   clang-format python3
 )

@@ -43,7 +43,8 @@ const std::map<std::string, std::set<std::string>> kAllowedModules{
 
 /// Third-party headers, by include prefix, and the modules that may include them. Eigen and the
 /// standard library are open to all. Embree may appear only in scene's .cpp files (never in a
-/// header), VTK only in formats (its file I/O), viz and cli, OpenEXR only in formats.
+/// header), VTK only in formats (its file I/O), viz and cli, OpenEXR only in formats, Boost
+/// (small_vector) only in hemisphere.
 struct ThirdParty {
   std::regex include;
   std::set<std::string> modules;
@@ -61,6 +62,7 @@ const std::vector<std::pair<std::string, ThirdParty>>& third_party() {
         false}},
       {"nlohmann-json", {std::regex(R"(^nlohmann/)"), {"scene", "formats", "cli"}, false}},
       {"CLI11", {std::regex(R"(^CLI/)"), {"cli"}, false}},
+      {"Boost", {std::regex(R"(^boost/)"), {"hemisphere"}, false}},
   };
   return rules;
 }
