@@ -1,4 +1,5 @@
 // `radiosity solve SCENE -o SOLUTION.vtp`: mesh the scene and run progressive radiosity.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -50,6 +51,9 @@ void run_solve(const SolveOptions& o) {
             << " elements (" << s.refined << " split), " << s.shots << " shots, unshot "
             << 100 * s.unshot_fraction << "% of emitted"
             << (s.converged ? "" : " (stopped at --max-shots)") << ", " << s.seconds << " s\n"
+            << "visibility: " << s.visibility_pairs << " point-patch pairs, "
+            << 100.0 * s.unhidden_pairs / std::max(1LL, s.visibility_pairs)
+            << "% with nothing between them (no shadow rays)\n"
             << "energy: emitted " << rgb(s.emitted) << " = absorbed " << rgb(s.absorbed)
             << " + escaped " << rgb(s.escaped) << " + unshot " << rgb(s.unshot) << "\n"
             << "wrote " << o.output << "\n";

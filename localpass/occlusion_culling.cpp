@@ -5,7 +5,7 @@
 #include <limits>
 #include <ranges>
 
-#include "localpass/shaft.h"
+#include "geometry/shaft.h"
 #include "scene/polygon.h"
 
 namespace rad {

@@ -10,7 +10,7 @@
 /// point y of f passes through g. Then
 ///  - x is off g's plane (a plane through x subtends nothing; both gatherers skip such faces),
 ///  - g's plane separates x from y, so it separates x from the box around f, and
-///  - g meets the shaft from x to f's box (the hull of x and the box; localpass/shaft.h),
+///  - g meets the shaft from x to f's box (the hull of x and the box; geometry/shaft.h),
 /// and all three hold as well for g's polygon, for any convex outline holding f and any box
 /// holding the outline. The local pass asks this of its clusters (blockers), from the polygons
 /// that passed for the parent cluster down to the faces. A cluster no polygon passes for is

@@ -39,6 +39,10 @@ struct SolverSettings {
   /// Seed of the visibility jitter; the solve is bitwise deterministic for a given seed, thread
   /// count notwithstanding.
   uint64_t seed = 1;
+  /// Cast no shadow rays for pairs that no polygon can hide (shaft culling, geometry/shaft.h);
+  /// false casts them all (the baseline the culling is measured against). Not saved in the
+  /// solution file.
+  bool shaft_culling = true;
 };
 
 /// A shooter: a planar sub-polygon of one scene polygon.
@@ -83,6 +87,9 @@ struct SolveStats {
   Rgb unshot = Rgb::Zero();
   double unshot_fraction = 0;  ///< sum(unshot) / sum(emitted)
   bool converged = false;      ///< Stopped by unshot_fraction rather than max_shots.
+  /// (receiver point, shooter) pairs whose visibility was needed, and of those the ones no
+  /// polygon could hide (no rays cast). Counted by the solve, not saved in the solution file.
+  long long visibility_pairs = 0, unhidden_pairs = 0;
 };
 
 /// A solved (or loaded) radiosity solution.

@@ -4,15 +4,18 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include "geometry/lambert.h"
 #include "geometry/plane.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
 #include "radiosity/random_stream.h"
+#include "radiosity/shadow_culling.h"
 #include "scene/error.h"
 
 namespace rad {
@@ -41,7 +44,10 @@ Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
 class Shooter {
  public:
   Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
-      : caster_(caster), epsilon_(epsilon) {
+      : caster_(caster),
+        culling_(caster.scene(), epsilon),
+        epsilon_(epsilon),
+        cull_(settings.shaft_culling) {
     side_ = std::max(
         1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
     seed_ = settings.seed;
@@ -55,6 +61,12 @@ class Shooter {
     if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return 0;
     const double ff = point_polygon_form_factor(x, n, shooter.corners);
     if (!(ff > 0)) return 0;
+    ++pairs_;
+    // Nothing between them: every ray would pass, so cast none.
+    if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon)) {
+      ++unhidden_;
+      return ff;
+    }
     uint64_t state = splitmix64(seed_ ^ splitmix64(key));
     int visible = 0;
     for (int a = 0; a < side_; ++a) {
@@ -76,9 +88,15 @@ class Shooter {
     return ff * visible / (side_ * side_);
   }
 
+  /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
+  std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
+
  private:
   const RayCaster& caster_;
+  ShadowCulling culling_;
   double epsilon_;
+  bool cull_ = true;
+  mutable std::atomic<long long> pairs_{0}, unhidden_{0};
   int side_ = 4;
   uint64_t seed_ = 1;
 };
@@ -242,6 +260,7 @@ class ProgressiveSolver {
     stats().patches = static_cast<int>(patches().size());
     stats().elements = static_cast<int>(leaves_.size());
     stats().seconds = seconds;
+    std::tie(stats().visibility_pairs, stats().unhidden_pairs) = rays_.counts();
     return std::move(solution_);
   }
 

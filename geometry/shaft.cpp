@@ -1,4 +1,4 @@
-#include "localpass/shaft.h"
+#include "geometry/shaft.h"
 
 #include <algorithm>
 

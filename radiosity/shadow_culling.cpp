@@ -1,0 +1,43 @@
+#include "radiosity/shadow_culling.h"
+
+#include <cmath>
+#include <optional>
+
+#include "geometry/shaft.h"
+
+namespace rad {
+
+ShadowCulling::ShadowCulling(const Scene& scene, double pad) : scene_(scene), pad_(pad) {
+  for (const Polygon& p : scene.polygons) {
+    Eigen::AlignedBox3d box;
+    for (const Vec3& v : p.vertices) box.extend(v);
+    boxes_.push_back(box);
+  }
+}
+
+bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector<Vec3>& corners,
+                                  int shooter) const {
+  std::optional<Shaft> shaft;  // built only if some plane separates
+  for (size_t p = 0; p < scene_.polygons.size(); ++p) {
+    if (static_cast<int>(p) == receiver || static_cast<int>(p) == shooter) continue;
+    const Polygon& polygon = scene_.polygons[p];
+    const Vec3& origin = polygon.vertices.front();
+    // x and every corner strictly on one side: no segment between them meets the plane.
+    const double side = polygon.normal.dot(x - origin);
+    bool one_side = std::abs(side) > pad_;
+    for (size_t i = 0; i < corners.size() && one_side; ++i) {
+      const double s = polygon.normal.dot(corners[i] - origin);
+      one_side = std::abs(s) > pad_ && (s > 0) == (side > 0);
+    }
+    if (one_side) continue;
+    if (!shaft) {
+      Eigen::AlignedBox3d box;
+      for (const Vec3& c : corners) box.extend(c);
+      shaft.emplace(x, box, pad_);
+    }
+    if (shaft->may_meet(polygon.vertices, boxes_[p])) return true;
+  }
+  return false;
+}
+
+}  // namespace rad

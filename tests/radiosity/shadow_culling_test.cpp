@@ -1,0 +1,89 @@
+// The solver's shadow culling is sound: where it says nothing can hide a shooter from a point,
+// no segment from the point to the shooter meets another polygon (an exact double-precision
+// segment test, independent of the shaft); and it does cull, and keeps what is really blocked.
+#include "radiosity/shadow_culling.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "radiosity/mesher.h"
+#include "tests/random_scenes.h"
+
+namespace rad {
+namespace {
+
+/// Whether segment x-y crosses polygon p's plane strictly between its ends at a point inside
+/// p (even-odd rule in the plane).
+bool segment_crosses(const Polygon& p, const Vec3& x, const Vec3& y) {
+  const Vec3& o = p.vertices.front();
+  const double sx = p.normal.dot(x - o), sy = p.normal.dot(y - o);
+  if (!(sx * sy < 0)) return false;
+  const Vec3 q = x + sx / (sx - sy) * (y - x);
+  const Vec3 u = p.normal.unitOrthogonal(), v = p.normal.cross(u);
+  const Vec2 q2(u.dot(q), v.dot(q));
+  bool inside = false;
+  for (size_t i = 0, j = p.vertices.size() - 1; i < p.vertices.size(); j = i++) {
+    const Vec2 a(u.dot(p.vertices[i]), v.dot(p.vertices[i]));
+    const Vec2 b(u.dot(p.vertices[j]), v.dot(p.vertices[j]));
+    if ((a.y() > q2.y()) != (b.y() > q2.y()) &&
+        q2.x() < (b.x() - a.x()) * (q2.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+/// A point of the convex outline from barycentric-like weights.
+Vec3 point_in(const std::vector<Vec3>& corners, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  Vec3 sum = Vec3::Zero();
+  double total = 0;
+  for (const Vec3& c : corners) {
+    const double w = std::pow(u(rng), 3);
+    sum += w * c, total += w;
+  }
+  return sum / total;
+}
+
+TEST(ShadowCulling, WhatItCullsNoPolygonHides) {
+  std::mt19937_64 rng(5);
+  long culled = 0, kept = 0, kept_and_blocked = 0, violations = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    test::RandomSceneMaker maker(seed);
+    const Scene scene = maker.random_scene().scene;
+    const ShadowCulling culling(scene, 1e-9);
+    const std::vector<Patch> patches = make_patches(scene, 0.4);
+    for (int trial = 0; trial < 300; ++trial) {
+      const Patch& receiver = patches[rng() % patches.size()];
+      const Patch& shooter = patches[rng() % patches.size()];
+      if (receiver.polygon == shooter.polygon) continue;
+      const Vec3 x = point_in(receiver.corners, rng);
+      const bool hidden =
+          culling.may_be_hidden(x, receiver.polygon, shooter.corners, shooter.polygon);
+      (hidden ? kept : culled) += 1;
+      bool blocked = false;
+      for (int k = 0; k < 60 && !blocked; ++k) {
+        const Vec3 y = k < static_cast<int>(shooter.corners.size())
+                           ? shooter.corners[k]
+                           : point_in(shooter.corners, rng);
+        for (size_t p = 0; p < scene.polygons.size() && !blocked; ++p) {
+          if (static_cast<int>(p) == receiver.polygon || static_cast<int>(p) == shooter.polygon)
+            continue;
+          blocked = segment_crosses(scene.polygons[p], x, y);
+        }
+      }
+      kept_and_blocked += hidden && blocked;
+      if (!hidden && blocked && ++violations <= 3) {
+        ADD_FAILURE() << "seed " << seed << ": x " << x.transpose() << " on polygon "
+                      << receiver.polygon << ", shooter on polygon " << shooter.polygon
+                      << " culled, but a segment to it is blocked";
+      }
+    }
+  }
+  EXPECT_EQ(violations, 0);
+  EXPECT_GT(culled, kept / 4) << "culled " << culled << ", kept " << kept;
+  EXPECT_GT(kept_and_blocked, kept / 10) << "of " << kept;
+}
+
+}  // namespace
+}  // namespace rad
