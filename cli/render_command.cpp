@@ -78,6 +78,7 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& i
   out["emitting_fraction_mean"] = summary.gathered_exactly_mean / faces;
   out["projected_per_pixel"] = {{"mean", summary.projected_mean}, {"max", summary.projected_max}};
   out["projected_fraction_mean"] = summary.projected_mean / faces;
+  out["clusters_per_pixel"] = {{"mean", summary.clusters_mean}};
   out["bound"] = {{"relative_mean", summary.relative_bound_mean},
                   {"relative_max", summary.relative_bound_max},
                   {"max", summary.bound_max}};

@@ -21,6 +21,7 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera,
   const size_t count = static_cast<size_t>(width) * height;
   out.gathered_exactly.assign(count, 0);
   out.projected.assign(count, 0);
+  out.clusters.assign(count, 0);
   out.surface.assign(count, 0);
   std::atomic<size_t> done{0};
   tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
@@ -54,6 +55,7 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
         out.bound.pixels[index] = material.reflectance.cwiseProduct(r.bound);
         out.gathered_exactly[index] = r.gathered_exactly;
         out.projected[index] = r.projected;
+        out.clusters[index] = r.clusters;
       });
 }
 
@@ -72,12 +74,13 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
 
 IrradianceSummary summarize(const IrradianceImage& image) {
   IrradianceSummary s;
-  double gathered_sum = 0, projected_sum = 0, relative_bound_sum = 0;
+  double gathered_sum = 0, projected_sum = 0, clusters_sum = 0, relative_bound_sum = 0;
   for (size_t i = 0; i < image.surface.size(); ++i) {
     if (!image.surface[i]) continue;
     ++s.pixels;
     gathered_sum += image.gathered_exactly[i];
     projected_sum += image.projected[i];
+    if (!image.clusters.empty()) clusters_sum += image.clusters[i];
     s.gathered_exactly_max = std::max(s.gathered_exactly_max, image.gathered_exactly[i]);
     s.projected_max = std::max(s.projected_max, image.projected[i]);
     const double bound = image.bound.pixels[i].maxCoeff();
@@ -90,6 +93,7 @@ IrradianceSummary summarize(const IrradianceImage& image) {
   const double n = static_cast<double>(std::max<size_t>(s.pixels, 1));
   s.gathered_exactly_mean = gathered_sum / n;
   s.projected_mean = projected_sum / n;
+  s.clusters_mean = clusters_sum / n;
   s.relative_bound_mean = relative_bound_sum / n;
   return s;
 }

@@ -19,6 +19,7 @@ struct IrradianceImage {
   std::vector<int> gathered_exactly;  ///< Per pixel: faces gathered exactly (0 at misses, back
                                       ///< sides, Monte Carlo)
   std::vector<int> projected;  ///< Per pixel: faces projected (hemisphere: with possible occluders)
+  std::vector<int> clusters;   ///< Per pixel: cluster intervals computed (localpass/cluster_tree.h)
   std::vector<char> surface;   ///< Per pixel: 1 where a front-facing surface was gathered
   int samples_per_pixel = 0;   ///< Monte Carlo: rays per pixel; 0 for the exact local pass
 };
@@ -27,7 +28,7 @@ struct IrradianceImage {
 /// render's stats JSON, the sweep's table).
 struct IrradianceSummary {
   size_t pixels = 0;  ///< pixels gathered
-  double gathered_exactly_mean = 0, projected_mean = 0;
+  double gathered_exactly_mean = 0, projected_mean = 0, clusters_mean = 0;
   int gathered_exactly_max = 0, projected_max = 0;
   double bound_max = 0;  ///< largest bound, largest channel
   /// bound / B per pixel (largest channels; 0 where B = 0): mean and max.
