@@ -74,8 +74,8 @@ table=$("$build/bench/hemisphere_bench" 40)
 echo "wrote $out/hemisphere.md" >&2
 
 # The error-bounded local pass against tolerance 0, the naive exact gather and the Monte Carlo
-# baseline: local_pass.md at LOCAL_PASS_SIZE (default 64) with the naive rows; with
-# LOCAL_PASS_256=1 also local_pass_256.md at 256 x 256 without them (about 40 min on 2 cores).
+# baseline: local_pass.md at LOCAL_PASS_SIZE (default 64) with the naive rows. The large images
+# are bench/local_pass_targets.sh's (about 40 min on 2 cores).
 local_pass_table() {
   local size=$1 naive=$2 file=$3
   local table
@@ -86,10 +86,11 @@ local_pass_table() {
     echo "Produced by \`bash bench/run_all.sh\` (\`$build/bench/local_pass_bench $size 0.07 $naive\`): per method"
     echo "and tolerance, the image from the scene camera against the same method at tolerance 0; relative"
     echo "errors on each pixel's brightest channel; \"elements gathered\" counts the elements gathered"
-    echo "exactly, most of them by Lambert's formula alone (nothing can hide them); \"projected\" those that"
-    echo "went to the exact gatherer, occluders included; \"error / bound\" is the actual error over the"
-    echo "certified bound (1 is tight); the last column is the time the Monte Carlo gather (second table)"
-    echo "needs for the same RMS error, interpolated. \"no culling\" rows: the naive exact gather (every"
+    echo "exactly, most of them by Lambert's formula alone (nothing can hide them); \"clusters\" the"
+    echo "cluster intervals computed; \"projected\" the faces and blocking polygons sent to the visibility"
+    echo "structure; \"error / bound\" is the actual error over the certified bound (1 is tight); the last"
+    echo "column is what the Monte Carlo gather (second table) needs for the same RMS error, interpolated"
+    echo "(or extrapolated by its samples^-1/2 law). \"no culling\" rows: the naive exact gather (every"
     echo "element that can light the point, every element occluding), against the culled image. All cores."
     machine
     echo
@@ -98,5 +99,4 @@ local_pass_table() {
   echo "wrote $out/$file" >&2
 }
 local_pass_table "${LOCAL_PASS_SIZE:-64}" 1 local_pass.md
-if [ "${LOCAL_PASS_256:-0}" = 1 ]; then local_pass_table 256 0 local_pass_256.md; fi
 bash bench/stability.sh "$build"
