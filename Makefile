@@ -8,7 +8,7 @@ MAKEFLAGS += --no-print-directory
 DEMO_OUT ?= out/cornell-box
 RADIOSITY = $(BUILD_DIR)/cli/radiosity
 
-.PHONY: all deps configure build demo readme test bench results stability docs docs-check format format-check clean
+.PHONY: all deps configure build demo readme test bench results stability docs docs-check format format-check clean sanitize fuzz
 
 all: build
 
@@ -87,7 +87,8 @@ stability: build
 docs: build
 	@bash scripts/cli-reference.sh $(RADIOSITY) > docs/cli.md.tmp && mv docs/cli.md.tmp docs/cli.md
 	@python3 scripts/results_md.py > docs/results.md.tmp && mv docs/results.md.tmp docs/results.md
-	@echo "docs: wrote docs/cli.md, docs/results.md"
+	@bash scripts/robustness_md.sh $(BUILD_DIR) > docs/robustness.md.tmp && mv docs/robustness.md.tmp docs/robustness.md
+	@echo "docs: wrote docs/cli.md, docs/results.md, docs/robustness.md"
 
 docs-check: build
 	@bash scripts/cli-reference.sh $(RADIOSITY) | diff -u docs/cli.md - >/dev/null || \
@@ -103,5 +104,25 @@ format: deps
 format-check: deps
 	@$(FORMATTED) | xargs clang-format --dry-run --Werror && echo "format-check: clean"
 
+# The whole suite built with AddressSanitizer and UndefinedBehaviorSanitizer (CI runs it after
+# the normal suite). Leaks are reported too. A separate build folder; Debug keeps line numbers.
+SANITIZE_DIR ?= build-sanitize
+sanitize: deps
+	@test -f $(SANITIZE_DIR)/CMakeCache.txt || cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DRAD_SANITIZE=ON -DRAD_BUILD_BENCH=OFF
+	@cmake --build $(SANITIZE_DIR) -j$(JOBS)
+	@cd $(SANITIZE_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j$(JOBS)
+
+# The libFuzzer targets (fuzz/, clang): each runs FUZZ_SECONDS (default 60) on its seeded corpus
+# after replaying its regression set; the table of executions goes to stdout.
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	@test -f $(FUZZ_DIR)/CMakeCache.txt || CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAD_FUZZ=ON -DRAD_BUILD_TESTS=OFF -DRAD_BUILD_BENCH=OFF
+	@cmake --build $(FUZZ_DIR) -j$(JOBS)
+	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
 clean:
-	rm -rf $(BUILD_DIR) out
+	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(FUZZ_DIR) out

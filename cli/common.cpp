@@ -8,6 +8,7 @@
 
 #include "formats/solution_io.h"
 #include "scene/error.h"
+#include "scene/limits.h"
 #include "scene/scene_loader.h"
 
 namespace rad::cli {
@@ -35,6 +36,21 @@ CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const s
   CameraSpec spec = *scene.camera;
   if (width > 0) spec.width = width;
   if (height > 0) spec.height = height;
+  // What the images of a render take (radiosity and bound in doubles, the per-pixel counts,
+  // the EXR's floats), against the machine's memory: refuse before allocating.
+  constexpr double kBytesPerPixel = 2 * 24 + 3 * 4 + 1 + 4 * 4;
+  const double bytes = kBytesPerPixel * spec.width * static_cast<double>(spec.height);
+  const double memory =
+      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  if (memory > 0 && bytes > 0.5 * memory) {
+    const std::string source =
+        width > 0 || height > 0 ? command + " --width/--height" : scene_path + ": camera";
+    throw InputError(source + ": an image of " + std::to_string(spec.width) + " x " +
+                     std::to_string(spec.height) + " needs about " +
+                     std::to_string(static_cast<long long>(bytes / (1 << 30))) +
+                     " GiB, more than half of this machine's " +
+                     std::to_string(static_cast<long long>(memory / (1 << 30))) + " GiB");
+  }
   return spec;
 }
 
@@ -95,9 +111,9 @@ CLI::Option* add_solution_option(CLI::App* sub, std::string* solution, const std
 
 void add_image_size_options(CLI::App* sub, int* width, int* height, const std::string& what) {
   sub->add_option("--width", *width, what + " width in pixels (default: the camera's)")
-      ->check(CLI::Range(1, 1 << 15));
+      ->check(CLI::Range(1, limits::kImageSide));
   sub->add_option("--height", *height, what + " height in pixels (default: the camera's)")
-      ->check(CLI::Range(1, 1 << 15));
+      ->check(CLI::Range(1, limits::kImageSide));
 }
 
 void add_threads_option(CLI::App* sub, int* threads) {

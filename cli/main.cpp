@@ -5,9 +5,28 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <new>
+#include <string>
 
 #include "cli/commands.h"
 #include "scene/error.h"
+
+namespace {
+
+/// One line, whatever a message holds: line breaks, escape codes and other control characters
+/// (a library's coloured log, a file name with a newline) become spaces.
+std::string one_line(const std::string& message) {
+  std::string out;
+  for (const char c : message) {
+    const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    if (control && (out.empty() || out.back() == ' ')) continue;
+    out += control ? ' ' : c;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -42,10 +61,13 @@ int main(int argc, char** argv) {
   try {
     run();
   } catch (const rad::Error& e) {
-    std::cerr << "radiosity: error: " << e.what() << "\n";
+    std::cerr << "radiosity: error: " << one_line(e.what()) << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "radiosity: error: out of memory\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "radiosity: unexpected error: " << e.what() << "\n";
+    std::cerr << "radiosity: unexpected error: " << one_line(e.what()) << "\n";
     return 1;
   }
   return 0;

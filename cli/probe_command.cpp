@@ -60,7 +60,7 @@ void run_probe(const ProbeOptions& o) {
       monte_carlo.emplace(scene, faces_from_solution(scene, solution));
       gather = [&](size_t i) {
         irradiance[i] = monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
-        bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified
+        bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
       };
     } else {
       pass.emplace(scene, faces_from_solution(scene, solution), method);
@@ -117,7 +117,7 @@ void add_probe_command(CLI::App& app, Run& run) {
       "Reads rows x,y,z,nx,ny,nz (a header row, blank lines and # comments allowed; the normal is\n"
       "normalized); writes x,y,z,nx,ny,nz,E_r,E_g,E_b,bound: irradiance in W/m^2 and the certified "
       "bound\n"
-      "on its error (largest channel: 0 when exact, inf for Monte Carlo), each number in the "
+      "on its error (largest channel: 0 when exact, empty for Monte Carlo), each number in the "
       "shortest\n"
       "form that reads back exactly. A point on a polygon, an edge or a vertex is valid. Parallel "
       "over\n"
@@ -131,7 +131,7 @@ void add_probe_command(CLI::App& app, Run& run) {
          "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing "
          "with "
          "angular spans (paper 001). Both exact; they agree to 1e-9. montecarlo (with --solution): "
-         "--samples cosine-weighted rays per point, bound reported as inf")
+         "--samples cosine-weighted rays per point, bound left empty")
       ->check(CLI::IsMember(method_names()))
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");

@@ -20,7 +20,10 @@ class AtomicFile {
   /// A path in the target's folder, with the target's extension (some writers look at it).
   const std::filesystem::path& temp_path() const { return temp_; }
   const std::filesystem::path& target() const { return target_; }
-  /// Renames the temporary file onto the target (atomic on one file system). Throws Error.
+  /// Renames the temporary file onto the target (atomic on one file system: a reader, or a
+  /// process killed at any moment, sees the old file or the new one whole; of two processes
+  /// writing one target, the last rename wins). Then removes temporaries of this target left by
+  /// processes that no longer run. Throws Error.
   void commit();
 
  private:

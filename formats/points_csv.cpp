@@ -86,10 +86,12 @@ void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
     row.clear();
     for (const double v :
          {p.x.x(), p.x.y(), p.x.z(), p.n.x(), p.n.y(), p.n.z(), e.x(), e.y(), e.z(), bound[i]}) {
-      // The shortest text that reads back to the same double.
+      // The shortest text that reads back to the same double; nothing for what is not finite
+      // (Monte Carlo's bound: none is certified), so no NaN or inf ever reaches the file.
+      if (!row.empty()) row.push_back(',');
+      if (!std::isfinite(v)) continue;
       char text[32];
       const auto end = std::to_chars(text, text + sizeof(text), v).ptr;
-      if (!row.empty()) row.push_back(',');
       row.append(text, end);
     }
     row.push_back('\n');

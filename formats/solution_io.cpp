@@ -14,13 +14,17 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <cctype>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "formats/atomic_file.h"
 #include "formats/patch_mesh_polydata.h"
+#include "formats/vtk_messages.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
+#include "scene/limits.h"
 
 // JSON for Eigen's RGB triples, and field lists for the settings and statistics: one list
 // serves both writing and reading.
@@ -39,8 +43,9 @@ namespace rad {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolverSettings, patch_size, element_levels, refine_threshold,
                                    refine_passes, min_element_size, unshot_fraction, max_shots,
                                    visibility_samples, seed)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolveStats, shots, patches, elements, refined, seconds, emitted,
-                                   absorbed, escaped, unshot, unshot_fraction, converged)
+// Not the seconds: the file is byte-identical from run to run and for any thread count.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolveStats, shots, patches, elements, refined, emitted, absorbed,
+                                   escaped, unshot, unshot_fraction, converged)
 
 namespace {
 
@@ -181,6 +186,7 @@ void write_solution(const std::filesystem::path& file, const Solution& solution,
   field->AddArray(patch_normal);
 
   AtomicFile out(file);
+  capture_vtk_messages();
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetFileName(out.temp_path().c_str());
   writer->SetInputData(poly);
@@ -254,6 +260,40 @@ class FieldReader {
   std::string file_;
 };
 
+/// The counts a .vtp file's XML claims (NumberOfPoints, NumberOfPolys, ... of its Piece and
+/// NumberOfTuples of each array), checked against limits::kSolutionElements before VTK
+/// allocates for them: a small compressed file must not claim gigabytes. Reads the XML up to
+/// its appended data (at most the first 64 MiB).
+void check_claimed_size(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  std::string head;
+  std::string chunk(1 << 16, '\0');
+  while (head.size() < (size_t{64} << 20) && head.find("<AppendedData") == std::string::npos &&
+         stream.read(chunk.data(), static_cast<std::streamsize>(chunk.size())).gcount() > 0) {
+    head.append(chunk.data(), static_cast<size_t>(stream.gcount()));
+  }
+  head = head.substr(0, head.find("<AppendedData"));
+  for (const std::string key : {"NumberOfPoints", "NumberOfVerts", "NumberOfLines",
+                                "NumberOfStrips", "NumberOfPolys", "NumberOfTuples"}) {
+    // Arrays hold up to 8 corners per element; cells and points one or a few per element.
+    const long double limit = (key == "NumberOfTuples" ? 8.0L : 4.0L) *
+                              static_cast<long double>(limits::kSolutionElements);
+    for (size_t at = head.find(key + "=\""); at != std::string::npos;
+         at = head.find(key + "=\"", at + 1)) {
+      long double count = 0;
+      for (size_t i = at + key.size() + 2;
+           i < head.size() && std::isdigit(static_cast<unsigned char>(head[i])); ++i)
+        count = 10 * count + (head[i] - '0');
+      if (count > limit) {
+        throw InputError(file.string() + ": " + key + " claims more than " +
+                         std::to_string(static_cast<long long>(limit)) +
+                         ", beyond the limit of a solution file (" +
+                         std::to_string(limits::kSolutionElements) + " elements)");
+      }
+    }
+  }
+}
+
 Rgb rgb_at(vtkDataArray* a, vtkIdType i) {
   double v[3];
   a->GetTuple(i, v);
@@ -265,15 +305,20 @@ Rgb rgb_at(vtkDataArray* a, vtkIdType i) {
 Solution read_solution(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file))
     throw InputError(file.string() + ": no such solution file");
+  capture_vtk_messages();
   vtkNew<vtkXMLPolyDataReader> reader;
   if (!reader->CanReadFile(file.c_str())) {
     throw InputError(file.string() + ": not a VTK XML PolyData (.vtp) file");
   }
+  check_claimed_size(file);
   reader->SetFileName(file.c_str());
   reader->Update();
   vtkPolyData* poly = reader->GetOutput();
   const FieldReader in(poly, file.string());
-  if (reader->GetErrorCode() != 0 || !poly) in.fail("cannot read the solution file");
+  if (reader->GetErrorCode() != 0 || !poly || !vtk_message().empty()) {
+    const std::string why = vtk_message();
+    in.fail("cannot read the solution file" + (why.empty() ? "" : " (" + why + ")"));
+  }
 
   Solution s;
   s.scene_path = in.string("scene_path");

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "scene/error.h"
+#include "scene/limits.h"
 
 namespace rad {
 namespace {
@@ -117,6 +118,65 @@ std::vector<std::vector<Vec3>> read_stl_faces(const std::filesystem::path& file,
   return faces;
 }
 
+/// The element counts a PLY or OFF header claims, against what the file can hold (every vertex
+/// and face takes at least 2 bytes, in ASCII or binary) and limits::kPolygons: a short file
+/// must not make the reader reserve memory for billions of vertices. OBJ has no counts.
+void check_claimed_counts(const std::filesystem::path& file, const std::string& where,
+                          std::uintmax_t bytes) {
+  const std::string ext = lower_extension(file);
+  if (ext != ".ply" && ext != ".off") return;
+  std::ifstream in(file, std::ios::binary);
+  std::string header(4096, '\0');
+  in.read(header.data(), static_cast<std::streamsize>(header.size()));
+  header.resize(static_cast<size_t>(in.gcount()));
+  std::vector<long double> counts;
+  const auto number_at = [&](size_t i) {
+    while (i < header.size() && (header[i] == ' ' || header[i] == '\t')) ++i;
+    long double n = 0;
+    for (; i < header.size() && std::isdigit(static_cast<unsigned char>(header[i])); ++i)
+      n = 10 * n + (header[i] - '0');
+    return n;
+  };
+  if (ext == ".ply") {
+    for (const char* element : {"element vertex", "element face"}) {
+      const size_t at = header.find(element);
+      if (at != std::string::npos) counts.push_back(number_at(at + std::strlen(element)));
+    }
+  } else {
+    // "OFF" (or "COFF", "NOFF", ...) then the first non-comment line: vertices faces edges.
+    std::istringstream lines(header);
+    std::string line;
+    bool magic = false;
+    while (std::getline(lines, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      if (!magic) {
+        magic = true;
+        if (line.find("OFF") != std::string::npos &&
+            line.find_first_of("0123456789") == std::string::npos)
+          continue;
+      }
+      std::istringstream fields(
+          line.substr(line.find("OFF") == std::string::npos ? 0 : line.find("OFF") + 3));
+      long double v = 0, f = 0;
+      if (fields >> v >> f) counts = {v, f};
+      break;
+    }
+  }
+  for (const long double n : counts) {
+    if (n < 0) {
+      throw InputError(where + ": mesh file '" + file.string() + "' claims a negative count (" +
+                       std::to_string(static_cast<long long>(n)) + ")");
+    }
+    if (n > limits::kPolygons || 2 * n > static_cast<long double>(bytes)) {
+      throw InputError(where + ": mesh file '" + file.string() + "' claims " +
+                       std::to_string(static_cast<long long>(std::min<long double>(n, 1e18))) +
+                       " elements, more than " +
+                       (n > limits::kPolygons ? "the limit of " + std::to_string(limits::kPolygons)
+                                              : "its " + std::to_string(bytes) + " bytes hold"));
+    }
+  }
+}
+
 }  // namespace
 
 bool is_supported_mesh_extension(const std::filesystem::path& file) {
@@ -131,9 +191,16 @@ std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file
     throw InputError(where + ": unsupported mesh format '" + file.extension().string() + "' of '" +
                      file.string() + "' (supported: .obj .ply .off .stl)");
   }
-  if (!std::ifstream(file).good()) {
+  std::error_code error;
+  if (!std::ifstream(file).good() || !std::filesystem::is_regular_file(file, error)) {
     throw InputError(where + ": cannot open mesh file '" + file.string() + "'");
   }
+  const std::uintmax_t bytes = std::filesystem::file_size(file, error);
+  if (error || bytes > limits::kMeshFileBytes) {
+    throw InputError(where + ": mesh file '" + file.string() + "' is larger than the limit of " +
+                     std::to_string(limits::kMeshFileBytes >> 20) + " MiB");
+  }
+  check_claimed_counts(file, where, bytes);
   if (lower_extension(file) == ".stl") return read_stl_faces(file, where);
 
   ReadMesh mesh;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "scene/error.h"
+#include "scene/limits.h"
 #include "scene/mesh_reader.h"
 #include "scene/polygon_validation.h"
 
@@ -185,6 +186,13 @@ CameraSpec read_camera(const Reader& in, const Json& j) {
   spec.fov_deg = in.number(j["fov_deg"], "camera.fov_deg");
   if (j.contains("width")) spec.width = in.positive_int(j["width"], "camera.width");
   if (j.contains("height")) spec.height = in.positive_int(j["height"], "camera.height");
+  for (const auto& [side, name] : {std::pair{spec.width, "width"}, {spec.height, "height"}}) {
+    if (side > limits::kImageSide) {
+      in.fail(std::string("camera.") + name,
+              std::to_string(side) + " pixels, more than the limit of " +
+                  std::to_string(limits::kImageSide) + " (as --width and --height)");
+    }
+  }
   try {
     Camera check(spec);  // same validation as at render time, reported with the file name
   } catch (const InputError& e) {
@@ -193,10 +201,40 @@ CameraSpec read_camera(const Reader& in, const Json& j) {
   return spec;
 }
 
+/// The deepest nesting of arrays and objects outside strings, with the byte where it first
+/// exceeds `limit` (or npos). nlohmann's parser keeps its own stack, but what it builds is
+/// destroyed recursively: a file of 100,000 nested brackets would overflow the stack.
+size_t too_deep_at(const std::string& text, int limit) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::filesystem::path& file) {
   const Reader in(file.string());
+  if (const size_t at = too_deep_at(json_text, limits::kJsonDepth); at != std::string::npos) {
+    throw InputError(file.string() + ":" + line_column(json_text, at) +
+                     ": invalid JSON: nested deeper than " + std::to_string(limits::kJsonDepth) +
+                     " levels");
+  }
   Json root;
   try {
     root = Json::parse(quote_nonfinite_literals(json_text));
@@ -208,7 +246,11 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
     throw InputError(file.string() + ":" + line_column(json_text, e.byte) +
                      ": invalid JSON: " + what);
   } catch (const Json::exception& e) {
-    throw InputError(file.string() + ": invalid JSON: " + std::string(e.what()));
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": the words only.
+    std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+      what = what.substr(what.find("] ") + 2);
+    throw InputError(file.string() + ": invalid JSON: " + what);
   }
 
   Scene scene;
@@ -266,6 +308,10 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
       for (size_t p = 0; p < polygons.size(); ++p) {
         const std::string pw = where + " polygon " + std::to_string(p);
         if (!polygons[p].is_array()) in.fail(pw, "expected a list of [x, y, z] vertices");
+        if (polygons[p].size() > static_cast<size_t>(limits::kPolygonVertices)) {
+          in.fail(pw, "has " + std::to_string(polygons[p].size()) + " vertices, more than " +
+                          std::to_string(limits::kPolygonVertices));
+        }
         std::vector<Vec3> vertices;
         for (size_t v = 0; v < polygons[p].size(); ++v) {
           vertices.push_back(in.vec3(polygons[p][v], pw + " vertex " + std::to_string(v)));
@@ -282,6 +328,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
         scene.polygons.push_back(std::move(p));
       }
     }
+    if (static_cast<long long>(scene.polygons.size()) > limits::kPolygons) {
+      in.fail(where, "the scene has more than " + std::to_string(limits::kPolygons) + " polygons");
+    }
     object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
     scene.objects.push_back(std::move(object));
   }
@@ -294,6 +343,13 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
 Scene load_scene(const std::filesystem::path& file) {
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw InputError(file.string() + ": cannot open scene file");
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(file, error);
+  if (!error && bytes > limits::kSceneFileBytes) {
+    throw InputError(file.string() + ": scene file of " + std::to_string(bytes >> 20) +
+                     " MiB, more than the limit of " +
+                     std::to_string(limits::kSceneFileBytes >> 20) + " MiB");
+  }
   std::ostringstream text;
   text << stream.rdbuf();
   if (stream.bad()) throw InputError(file.string() + ": cannot read scene file");

@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libboost-dev
   xvfb xauth
   clang-format python3
+  clang libclang-rt-14-dev
 )
 
 missing=()

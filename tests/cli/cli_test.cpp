@@ -22,55 +22,13 @@
 #include "formats/image_io.h"
 #include "formats/solution_io.h"
 #include "tests/bad_scene_cases.h"
+#include "tests/cli/run_cli.h"
 
 namespace {
 
-namespace fs = std::filesystem;
+using namespace rad::test::cli;
 const fs::path kRoot = RAD_SOURCE_DIR;
 const fs::path kData = RAD_TEST_DATA;
-
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path scratch() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / (std::string("rad_cli_test_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-/// A path in single quotes for the shell.
-std::string quoted(const fs::path& path) {
-  std::string q(1, '\'');
-  q.append(path.string()).push_back('\'');
-  return q;
-}
-
-/// Runs `radiosity ARGS` with stdout and stderr captured separately.
-Result run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / "rad_cli_capture";
-  fs::create_directories(dir);
-  const std::string tag = std::to_string(::getpid());
-  const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
-  const std::string command = std::string("'") + RADIOSITY_EXE + "' " + args + " >'" +
-                              out.string() + "' 2>'" + err.string() + "' </dev/null";
-  const int status = std::system(command.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
 
 TEST(Cli, EverySubcommandHasHelp) {
   for (const char* args : {"--help", "info --help", "solve --help", "probe --help", "render --help",

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# Runs every fuzz target for SECONDS each (default 60) on corpora seeded from the repository's
+# own files, then replays the regression set (fuzz/regressions/<target>/). Prints a table of
+# executions per target; exits 1 on any crash, hang, leak or sanitizer report (the input is
+# kept under BUILD/fuzz-findings/).
+# Usage: bash fuzz/run.sh [BUILD_DIR] [SECONDS]   (a build configured with -DRAD_FUZZ=ON)
+set -uo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build-fuzz}
+seconds=${2:-60}
+corpus=$build/fuzz-corpus
+findings=$build/fuzz-findings
+mkdir -p "$corpus" "$findings"
+
+seed() {  # target, files...
+  local target=$1
+  shift
+  mkdir -p "$corpus/$target"
+  for f in "$@"; do [ -f "$f" ] && cp -n "$f" "$corpus/$target/" 2>/dev/null; done
+  return 0
+}
+seed fuzz_scene data/*/scene.json tests/data/bad/*.json tests/data/meshes/*.json
+for format in obj ply off stl; do
+  seed "fuzz_mesh_$format" tests/data/meshes/*."$format" tests/data/bad/*."$format"
+done
+seed fuzz_points tests/data/points/*.csv
+# A small solution and a small image, made by the (sanitized) executable itself.
+if [ ! -f "$corpus/fuzz_solution/cube.vtp" ]; then
+  mkdir -p "$corpus/fuzz_solution" "$corpus/fuzz_exr"
+  "$build/cli/radiosity" solve data/closed-cube/scene.json --patch-size 0.5 \
+    -o "$corpus/fuzz_solution/cube.vtp" >/dev/null 2>&1
+  "$build/cli/radiosity" render data/cornell-box/scene.json --method albedo --width 8 --height 8 \
+    --no-preview -o "$corpus/fuzz_exr/albedo.exr" >/dev/null 2>&1
+fi
+
+status=0
+echo "| target | seconds | executions | corpus files | result |"
+echo "|---|---|---|---|---|"
+for target in fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl fuzz_points \
+              fuzz_solution fuzz_exr; do
+  exe=$build/fuzz/$target
+  dict=()
+  [ "$target" = fuzz_scene ] && dict=(-dict=fuzz/scene.dict)
+  log=$findings/$target.log
+  # The regression set first: each file once.
+  if [ -d "fuzz/regressions/$target" ] && [ -n "$(ls -A "fuzz/regressions/$target")" ]; then
+    if ! "$exe" -runs=1 "fuzz/regressions/$target"/* >"$log.regressions" 2>&1; then
+      echo "| $target | - | - | - | regression FAILED (see $log.regressions) |"
+      status=1
+      continue
+    fi
+  fi
+  ASAN_OPTIONS=detect_leaks=1 "$exe" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/$target-" \
+    "$corpus/$target" >"$log" 2>&1
+  result=$?
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  files=$(ls "$corpus/$target" | wc -l)
+  if [ $result -eq 0 ]; then
+    echo "| $target | $seconds | ${runs:-?} | $files | clean |"
+  else
+    echo "| $target | $seconds | ${runs:-?} | $files | FINDING (see $log and $findings/) |"
+    status=1
+  fi
+done
+exit $status

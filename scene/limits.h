@@ -1,0 +1,24 @@
+#pragma once
+/// The limits on what a user's files may ask for, in one place: beyond them a reader stops with
+/// one line naming the file and the limit, before it allocates (issue 16: a small hostile file
+/// must not crash the process or claim gigabytes). Each is far above any real scene: the
+/// bundled Cornell box has 36 polygons, 8k elements and a 512 x 512 camera.
+#include <cstdint>
+
+namespace rad::limits {
+
+/// JSON nesting (arrays and objects inside each other); a scene needs 6.
+inline constexpr int kJsonDepth = 64;
+/// Size of a scene file (JSON) and of a mesh file or points CSV, in bytes.
+inline constexpr std::uintmax_t kSceneFileBytes = std::uintmax_t{256} << 20;
+inline constexpr std::uintmax_t kMeshFileBytes = std::uintmax_t{2} << 30;
+/// Polygons in a scene (after meshes are read) and vertices in one polygon.
+inline constexpr long long kPolygons = 10'000'000;
+inline constexpr long long kPolygonVertices = 100'000;
+/// Image side in pixels: the command line's --width/--height limit and the scene camera's.
+inline constexpr int kImageSide = 1 << 15;
+/// Elements in a solution file (the counts its XML claims are checked against it before VTK
+/// allocates: points and cells up to 4 per element, array tuples up to 8).
+inline constexpr long long kSolutionElements = 5'000'000;
+
+}  // namespace rad::limits

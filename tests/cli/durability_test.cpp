@@ -1,0 +1,201 @@
+// Nothing lost, the same bytes every time, and no NaN (issue 16): outputs of killed processes
+// leave the previous file whole; two processes writing one output leave one whole file; solve,
+// probe and render give byte-identical files for 1, 2 and 4 threads and from run to run; and no
+// NaN or infinity reaches an image, a CSV or a solution, at the Cornell box's corners and edges.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <thread>
+#include <vector>
+
+#include "formats/image_io.h"
+#include "formats/solution_io.h"
+#include "tests/cli/run_cli.h"
+
+namespace {
+
+using namespace rad::test::cli;
+const fs::path kRoot = RAD_SOURCE_DIR;
+const fs::path kData = RAD_TEST_DATA;
+const std::string kCornell = quoted(kRoot / "data/cornell-box/scene.json");
+
+/// Starts `radiosity ARGS` (split on spaces; no quoting needed for these paths) in the
+/// background, output discarded.
+pid_t start(const std::vector<std::string>& args) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::vector<char*> argv{const_cast<char*>(RADIOSITY_EXE)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1), ::dup2(null, 2);
+    ::execv(RADIOSITY_EXE, argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// The files in `dir` that are temporaries of an AtomicFile (".name.tmpPID.ext").
+int temporaries(const fs::path& dir) {
+  int count = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    count += e.path().filename().string().find(".tmp") != std::string::npos;
+  return count;
+}
+
+TEST(Durability, KilledWritesLeaveThePreviousFileWholeAndTheNextRunCleansUp) {
+  const fs::path dir = scratch();
+  const fs::path image = dir / "image.exr";
+  const std::string scene = (kRoot / "data/cornell-box/scene.json").string();
+  ASSERT_EQ(
+      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+          .exit_code,
+      0);
+  const std::string before = slurp(image);
+  // Large renders killed at times spread over their run: some before writing, some while the
+  // temporary is being written, some after the rename.
+  const std::vector<std::string> args{"render", scene,      "--method", "albedo", "--width",
+                                      "2048",   "--height", "2048",     "-o",     image.string()};
+  const auto t0 = std::chrono::steady_clock::now();
+  int status = 0;
+  ::waitpid(start(args), &status, 0);
+  const double full = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const std::string after = slurp(image);
+  ASSERT_EQ(
+      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+          .exit_code,
+      0);
+  int with_temporary = 0;
+  for (int k = 1; k <= 12; ++k) {
+    const pid_t pid = start(args);
+    std::this_thread::sleep_for(std::chrono::duration<double>(full * k / 12.5));
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    with_temporary += temporaries(dir) > 0;
+    const std::string now = slurp(image);
+    EXPECT_TRUE(now == before || now == after) << "kill " << k << ": a partial image";
+    if (now == after) {  // finished before the kill: back to the small image
+      ASSERT_EQ(
+          run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+              .exit_code,
+          0);
+    }
+  }
+  std::cout << with_temporary << " of 12 kills left a temporary behind\n";
+  // The next successful run removes what killed processes left.
+  ASSERT_EQ(
+      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+          .exit_code,
+      0);
+  EXPECT_EQ(temporaries(dir), 0);
+  EXPECT_EQ(slurp(image), before);
+}
+
+TEST(Durability, TwoProcessesWritingOneOutputLeaveOneWholeFile) {
+  const fs::path dir = scratch();
+  const std::string out = (dir / "image.exr").string();
+  const std::string scene = (kRoot / "data/cornell-box/scene.json").string();
+  const pid_t a = start(
+      {"render", scene, "--method", "albedo", "--width", "512", "--height", "512", "-o", out});
+  const pid_t b = start(
+      {"render", scene, "--method", "facing", "--width", "512", "--height", "512", "-o", out});
+  int status = 0;
+  ::waitpid(a, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  ::waitpid(b, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const rad::Image image = rad::read_exr(out);
+  EXPECT_EQ(image.width, 512);
+  EXPECT_EQ(image.height, 512);
+  EXPECT_EQ(temporaries(dir), 0);
+}
+
+TEST(Determinism, SolveProbeAndRenderAreByteIdenticalForAnyThreadCountAndRun) {
+  const fs::path dir = scratch();
+  const std::string points = quoted(kData / "points/cornell.csv");
+  const auto outputs = [&](const std::string& tag, int threads) {
+    const std::string j = " -j " + std::to_string(threads);
+    const fs::path sub = dir / tag;
+    fs::create_directories(sub);
+    const std::string solution = quoted(sub / "solution.vtp");
+    EXPECT_EQ(run("solve " + kCornell + " --patch-size 0.15 -o " + solution + j).exit_code, 0);
+    EXPECT_EQ(run("probe " + kCornell + " -s " + solution + " --points " + points +
+                  " --method hemisphere --tolerance 0.05 -o " + quoted(sub / "probe.csv") + j)
+                  .exit_code,
+              0);
+    for (const char* method :
+         {"albedo", "facing", "patches", "hemisphere", "vertex", "montecarlo"}) {
+      const std::string m = method;
+      EXPECT_EQ(run("render " + kCornell + " -s " + solution + " --method " + m +
+                    " --width 24 --height 24 --tolerance 0.05 --samples 16 -o " +
+                    quoted(sub / (m + ".exr")) + j)
+                    .exit_code,
+                0)
+          << m;
+    }
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& e : fs::directory_iterator(sub)) {
+      if (e.path().extension() == ".json") continue;  // render stats: seconds and threads
+      files.emplace_back(e.path().filename().string(), slurp(e.path()));
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+  };
+  const auto reference = outputs("j1", 1);
+  EXPECT_GE(reference.size(), 14u);  // solution, probe, 6 images with their previews
+  for (const auto& [tag, threads] :
+       std::vector<std::pair<std::string, int>>{{"j2", 2}, {"j4", 4}, {"j2-again", 2}}) {
+    const auto other = outputs(tag, threads);
+    ASSERT_EQ(other.size(), reference.size());
+    for (size_t i = 0; i < other.size(); ++i) {
+      EXPECT_EQ(other[i].first, reference[i].first);
+      EXPECT_TRUE(other[i].second == reference[i].second)
+          << other[i].first << " differs with " << threads << " threads (" << tag << ")";
+    }
+  }
+}
+
+TEST(Numbers, NoNaNOrInfinityReachesAnImageACsvOrASolution) {
+  // The Cornell box's corners and edges (points/cornell.csv holds them) and every method.
+  const fs::path dir = scratch();
+  const std::string solution = quoted(dir / "solution.vtp");
+  ASSERT_EQ(run("solve " + kCornell + " --patch-size 0.15 -o " + solution).exit_code, 0);
+  const rad::Solution s = rad::read_solution(dir / "solution.vtp");
+  int checked = 0;
+  for (const rad::Element& e : s.elements) {
+    EXPECT_TRUE(e.radiosity.allFinite());
+    for (const rad::Vec3& c : e.corners) EXPECT_TRUE(c.allFinite());
+    ++checked;
+  }
+  for (const char* method : {"hemisphere", "vertex", "montecarlo"}) {
+    const std::string m = method;
+    ASSERT_EQ(run("probe " + kCornell + " -s " + solution + " --points " +
+                  quoted(kData / "points/cornell.csv") + " --method " + m +
+                  " --tolerance 0 --samples 64 -o " + quoted(dir / (m + ".csv")))
+                  .exit_code,
+              0);
+    const std::string csv = slurp(dir / (m + ".csv"));
+    for (const char* bad : {"nan", "NaN", "inf", "Inf"})
+      EXPECT_EQ(csv.find(bad), std::string::npos) << m << ": " << bad << " in the CSV";
+    ASSERT_EQ(
+        run("render " + kCornell + " -s " + solution + " --method " + m +
+            " --width 32 --height 32 --tolerance 0 --samples 16 -o " + quoted(dir / (m + ".exr")))
+            .exit_code,
+        0);
+    const rad::Image image = rad::read_exr(dir / (m + ".exr"));
+    for (const rad::Rgb& p : image.pixels) {
+      EXPECT_TRUE(p.allFinite()) << m;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 3000);
+}
+
+}  // namespace

@@ -1,0 +1,109 @@
+// Malformed and hostile inputs through the executable (issue 16): every class of
+// tests/hostile_inputs.h and tests/bad_scene_cases.h exits 1 with one line naming the file and
+// the problem: no crash, no hang, no escape codes, nothing written. With RAD_ROBUSTNESS_TABLE set
+// to a path, also writes the table of docs/robustness.md (make docs): each class and the message
+// it gets, with the folders as placeholders.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/bad_scene_cases.h"
+#include "tests/cli/run_cli.h"
+#include "tests/hostile_inputs.h"
+
+namespace {
+
+using namespace rad::test::cli;
+const fs::path kRoot = RAD_SOURCE_DIR;
+const fs::path kData = RAD_TEST_DATA;
+
+void replace_all(std::string& text, const std::string& from, const std::string& to) {
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
+/// The generated inputs, too large or too odd to commit.
+void write_generated_inputs(const fs::path& dir) {
+  std::ofstream(dir / "deep.json") << std::string(100000, '[');
+  {
+    std::ofstream many(dir / "many_vertices.json");
+    many << R"({"materials": {"w": {"reflectance": 0.5}}, "objects": [{"material": "w", )"
+         << R"("polygons": [[)";
+    for (int i = 0; i <= 100000; ++i) many << (i ? "," : "") << "[" << i << ",0,0]";
+    many << "]]}]}";
+  }
+  {
+    // A sparse file of 257 MiB: the size check must refuse it before reading a byte.
+    std::ofstream(dir / "huge.json") << "{";
+    fs::resize_file(dir / "huge.json", (257u << 20));
+  }
+}
+
+TEST(HostileInput, EveryClassExitsOneWithOneLineAndWritesNothing) {
+  const fs::path work = scratch();
+  const fs::path inputs = work / "in", outputs = work / "out";
+  fs::create_directories(inputs);
+  write_generated_inputs(inputs);
+  const Result solved =
+      run("solve " + quoted(kRoot / "data/cornell-box/scene.json") +
+          " --patch-size 0.25 --refine-threshold 0 -o " + quoted(work / "solution.vtp"));
+  ASSERT_EQ(solved.exit_code, 0) << solved.err;
+
+  std::string table = "| input | message (exit 1) |\n|---|---|\n";
+  const auto check = [&](const std::string& what, std::string command, const std::string& names,
+                         const std::string& problem) {
+    fs::remove_all(outputs);
+    fs::create_directories(outputs);
+    replace_all(command, "{h}", (kData / "hostile").string());
+    replace_all(command, "{b}", (kData / "bad").string());
+    replace_all(command, "{d}", (kRoot / "data").string());
+    replace_all(command, "{s}", (work / "solution.vtp").string());
+    replace_all(command, "{o}",
+                command.find("{o}/deep") != std::string::npos ||
+                        command.find("{o}/many") != std::string::npos ||
+                        command.find("{o}/huge") != std::string::npos
+                    ? inputs.string()
+                    : outputs.string());
+    const Result r = run(command, 120);
+    EXPECT_EQ(r.exit_code, 1) << what << ": radiosity " << command << "\n" << r.err;
+    // One line of error; the scene's own warnings (the Cornell box has one) may come first.
+    std::string error;
+    int lines = 0;
+    std::istringstream stream(r.err);
+    for (std::string line; std::getline(stream, line);) {
+      if (line.rfind("warning: ", 0) == 0) continue;
+      error = line, ++lines;
+    }
+    EXPECT_EQ(lines, 1) << what << "\n" << r.err;
+    EXPECT_EQ(error.rfind("radiosity: error: ", 0), 0u) << what << "\n" << r.err;
+    EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << what << ": escape codes\n" << r.err;
+    EXPECT_NE(r.err.find(names), std::string::npos) << what << ": must name " << names << "\n"
+                                                    << r.err;
+    EXPECT_NE(r.err.find(problem), std::string::npos) << what << ": must say " << problem << "\n"
+                                                      << r.err;
+    EXPECT_EQ(r.out, "") << what;
+    EXPECT_TRUE(fs::is_empty(outputs)) << what << ": left files in " << outputs;
+    std::string message = error;
+    replace_all(message, (kData / "hostile").string(), "tests/data/hostile");
+    replace_all(message, (kData / "bad").string(), "tests/data/bad");
+    replace_all(message, (kRoot / "data").string(), "data");
+    replace_all(message, inputs.string(), "(generated)");
+    replace_all(message, outputs.string(), "out");
+    replace_all(message, work.string(), "(test)");
+    replace_all(message, "|", "\\|");
+    table += "| " + what + " | `" + message + "` |\n";
+  };
+  for (const auto& c : rad::test::hostile_inputs()) check(c.what, c.command, c.names, c.problem);
+  for (const auto& c : rad::test::bad_scene_cases())
+    check("scene: " + c.problem, "info {b}/" + c.file, c.element, c.problem);
+  const size_t classes = rad::test::hostile_inputs().size() + rad::test::bad_scene_cases().size();
+  EXPECT_GE(classes, 50u);
+  if (const char* path = std::getenv("RAD_ROBUSTNESS_TABLE")) {
+    std::ofstream(path) << table;
+  }
+}
+
+}  // namespace
