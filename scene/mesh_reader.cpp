@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <sstream>
 
 #include "scene/error.h"
@@ -23,26 +24,28 @@ struct DoubleTraits : public OpenMesh::DefaultTraits {
 };
 using ReadMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
 
-/// Routes OpenMesh's global log streams into a buffer while alive, so library code prints
-/// nothing and the messages become warnings that name the file.
+/// Routes OpenMesh's global log streams into a buffer, so library code prints nothing and the
+/// messages become warnings that name the file. The buffer is connected once for the process:
+/// OpenMesh's multiplex_streambuf::disconnect never frees what connect allocated (a leak per
+/// read that LeakSanitizer reports), and OpenMesh's logging has no other reader here.
 class CaptureOpenMeshLog {
  public:
-  CaptureOpenMeshLog() {
-    for (auto* s : {&omerr(), &omlog(), &omout()}) {
-      s->disconnect(std::cerr);
-      s->disconnect(std::cout);
-      s->connect(buffer_);
-    }
-  }
-  ~CaptureOpenMeshLog() {
-    omerr().disconnect(buffer_), omerr().connect(std::cerr);
-    omlog().disconnect(buffer_), omlog().connect(std::cerr);
-    omout().disconnect(buffer_), omout().connect(std::cout);
+  CaptureOpenMeshLog() : lock_(mutex()) {
+    static const bool connected = [] {
+      for (auto* s : {&omerr(), &omlog(), &omout()}) {
+        s->disconnect(std::cerr);
+        s->disconnect(std::cout);
+        s->connect(buffer());
+      }
+      return true;
+    }();
+    (void)connected;
+    buffer().str("");
   }
   std::vector<std::string> lines() {
-    omerr().flush();
+    for (auto* s : {&omerr(), &omlog(), &omout()}) s->flush();
     std::vector<std::string> out;
-    std::istringstream in(buffer_.str());
+    std::istringstream in(buffer().str());
     for (std::string line; std::getline(in, line);) {
       if (!line.empty()) out.push_back(line);
     }
@@ -50,7 +53,15 @@ class CaptureOpenMeshLog {
   }
 
  private:
-  std::ostringstream buffer_;
+  static std::ostringstream& buffer() {
+    static std::ostringstream b;
+    return b;
+  }
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;  ///< One reader of the shared buffer at a time
 };
 
 std::string lower_extension(const std::filesystem::path& file) {
