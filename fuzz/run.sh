@@ -50,13 +50,13 @@ for target in fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl
   log=$findings/$target.log
   # The regression set first: each file once.
   if [ -d "fuzz/regressions/$target" ] && [ -n "$(ls -A "fuzz/regressions/$target")" ]; then
-    if ! LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp "$exe" -runs=1 "fuzz/regressions/$target"/* >"$log.regressions" 2>&1; then
+    if ! LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0 "$exe" -runs=1 "fuzz/regressions/$target"/* >"$log.regressions" 2>&1; then
       echo "| $target | - | - | - | regression FAILED (see $log.regressions) |"
       status=1
       continue
     fi
   fi
-  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp "$exe" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0 "$exe" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/$target-" \
     "$corpus/$target" >"$log" 2>&1
   result=$?

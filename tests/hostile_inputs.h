@@ -91,7 +91,7 @@ inline const std::vector<HostileInput>& hostile_inputs() {
       // Solution files
       {"truncated solution",
        "render {d}/cornell-box/scene.json --method patches -s {h}/truncated.vtp -o {o}/p.exr",
-       "truncated.vtp", "cannot read the solution file"},
+       "truncated.vtp", "claims more data than the file holds"},
       {"corrupt compressed solution",
        "render {d}/cornell-box/scene.json --method patches -s {h}/corrupt_payload.vtp -o {o}/p.exr",
        "corrupt_payload.vtp", "solution"},

@@ -125,7 +125,7 @@ TEST(Determinism, SolveProbeAndRenderAreByteIdenticalForAnyThreadCountAndRun) {
     const fs::path sub = dir / tag;
     fs::create_directories(sub);
     const std::string solution = quoted(sub / "solution.vtp");
-    EXPECT_EQ(run("solve " + kCornell + " --patch-size 0.15 -o " + solution + j).exit_code, 0);
+    EXPECT_EQ(run("solve " + kCornell + " --patch-size 0.25 -o " + solution + j).exit_code, 0);
     EXPECT_EQ(run("probe " + kCornell + " -s " + solution + " --points " + points +
                   " --method hemisphere --tolerance 0.05 -o " + quoted(sub / "probe.csv") + j)
                   .exit_code,
@@ -134,7 +134,7 @@ TEST(Determinism, SolveProbeAndRenderAreByteIdenticalForAnyThreadCountAndRun) {
          {"albedo", "facing", "patches", "hemisphere", "vertex", "montecarlo"}) {
       const std::string m = method;
       EXPECT_EQ(run("render " + kCornell + " -s " + solution + " --method " + m +
-                    " --width 24 --height 24 --tolerance 0.05 --samples 16 -o " +
+                    " --width 16 --height 16 --tolerance 0.05 --samples 16 -o " +
                     quoted(sub / (m + ".exr")) + j)
                     .exit_code,
                 0)
@@ -166,7 +166,7 @@ TEST(Numbers, NoNaNOrInfinityReachesAnImageACsvOrASolution) {
   // The Cornell box's corners and edges (points/cornell.csv holds them) and every method.
   const fs::path dir = scratch();
   const std::string solution = quoted(dir / "solution.vtp");
-  ASSERT_EQ(run("solve " + kCornell + " --patch-size 0.15 -o " + solution).exit_code, 0);
+  ASSERT_EQ(run("solve " + kCornell + " --patch-size 0.25 -o " + solution).exit_code, 0);
   const rad::Solution s = rad::read_solution(dir / "solution.vtp");
   int checked = 0;
   for (const rad::Element& e : s.elements) {
@@ -186,7 +186,7 @@ TEST(Numbers, NoNaNOrInfinityReachesAnImageACsvOrASolution) {
       EXPECT_EQ(csv.find(bad), std::string::npos) << m << ": " << bad << " in the CSV";
     ASSERT_EQ(
         run("render " + kCornell + " -s " + solution + " --method " + m +
-            " --width 32 --height 32 --tolerance 0 --samples 16 -o " + quoted(dir / (m + ".exr")))
+            " --width 16 --height 16 --tolerance 0 --samples 16 -o " + quoted(dir / (m + ".exr")))
             .exit_code,
         0);
     const rad::Image image = rad::read_exr(dir / (m + ".exr"));
@@ -195,7 +195,7 @@ TEST(Numbers, NoNaNOrInfinityReachesAnImageACsvOrASolution) {
       ++checked;
     }
   }
-  EXPECT_GT(checked, 3000);
+  EXPECT_GT(checked, 1000);
 }
 
 }  // namespace
