@@ -24,6 +24,10 @@ namespace fs = std::filesystem;
 
 /// The reader each target fuzzes (fuzz/fuzz_*.cpp), given the input file.
 const std::map<std::string, std::function<void(const fs::path&)>>& readers() {
+  const auto read_mesh = [](const fs::path& f) {
+    std::vector<std::string> warnings;
+    read_mesh_faces(f, "m", warnings);
+  };
   static const std::map<std::string, std::function<void(const fs::path&)>> all{
       {"fuzz_scene",
        [](const fs::path& f) {
@@ -32,26 +36,10 @@ const std::map<std::string, std::function<void(const fs::path&)>>& readers() {
          text << in.rdbuf();
          parse_scene(text.str(), f);
        }},
-      {"fuzz_mesh_obj",
-       [](const fs::path& f) {
-         std::vector<std::string> w;
-         read_mesh_faces(f, "m", w);
-       }},
-      {"fuzz_mesh_ply",
-       [](const fs::path& f) {
-         std::vector<std::string> w;
-         read_mesh_faces(f, "m", w);
-       }},
-      {"fuzz_mesh_off",
-       [](const fs::path& f) {
-         std::vector<std::string> w;
-         read_mesh_faces(f, "m", w);
-       }},
-      {"fuzz_mesh_stl",
-       [](const fs::path& f) {
-         std::vector<std::string> w;
-         read_mesh_faces(f, "m", w);
-       }},
+      {"fuzz_mesh_obj", read_mesh},
+      {"fuzz_mesh_ply", read_mesh},
+      {"fuzz_mesh_off", read_mesh},
+      {"fuzz_mesh_stl", read_mesh},
       {"fuzz_points", [](const fs::path& f) { read_points_csv(f); }},
       {"fuzz_solution", [](const fs::path& f) { read_solution(f); }},
       {"fuzz_exr",
