@@ -4,7 +4,8 @@
 /// the problem, no crash, no hang, nothing written. With the malformed scenes of
 /// tests/bad_scene_cases.h (run the same way by cli_test.cpp) they make the table of
 /// docs/robustness.md. Placeholders in `command`: {h} tests/data/hostile, {b} tests/data/bad,
-/// {d} data, {o} an empty output folder, {s} a solution of the Cornell box.
+/// {d} data, {g} the inputs the test generates, {o} an empty output folder, {s} a solution of
+/// the Cornell box.
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ struct HostileInput {
 inline const std::vector<HostileInput>& hostile_inputs() {
   static const std::vector<HostileInput> cases{
       // Scene files
-      {"JSON nested 100,000 deep", "info {o}/deep.json",
+      {"JSON nested 100,000 deep", "info {g}/deep.json",
        "deep.json:1:", "nested deeper than 64 levels"},
       {"empty scene file", "info {h}/empty.json", "empty.json", "invalid JSON"},
       {"binary bytes as a scene", "info {h}/binary.json", "binary.json", "invalid JSON"},
@@ -54,9 +55,9 @@ inline const std::vector<HostileInput>& hostile_inputs() {
        "missing \"material\""},
       {"unknown top-level key", "info {h}/unknown_top_key.json", "top level",
        "unknown key \"lights\""},
-      {"polygon of 100,001 vertices", "info {o}/many_vertices.json", "polygon 0",
+      {"polygon of 100,001 vertices", "info {g}/many_vertices.json", "polygon 0",
        "more than 100000"},
-      {"scene file over 256 MiB", "info {o}/huge.json", "huge.json",
+      {"scene file over 256 MiB", "info {g}/huge.json", "huge.json",
        "more than the limit of 256 MiB"},
       // Mesh files, through a scene that names them
       {"mesh path is a folder", "info {h}/mesh_is_directory.json", "folder.obj",
