@@ -8,7 +8,7 @@ MAKEFLAGS += --no-print-directory
 DEMO_OUT ?= out/cornell-box
 RADIOSITY = $(BUILD_DIR)/cli/radiosity
 
-.PHONY: all deps configure build demo readme test bench results stability docs docs-check format format-check clean sanitize fuzz
+.PHONY: all deps configure build demo readme test bench results stability docs docs-check format format-check clean sanitize fuzz fuzz-build fuzz-campaign
 
 all: build
 
@@ -125,11 +125,18 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl fuzz_points \
   fuzz_solution fuzz_exr
-fuzz: build
+fuzz: fuzz-build
+	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(RADIOSITY)
+
+fuzz-build: build
 	@test -f $(FUZZ_DIR)/CMakeCache.txt || CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAD_FUZZ=ON -DRAD_BUILD_TESTS=OFF -DRAD_BUILD_BENCH=OFF
 	@cmake --build $(FUZZ_DIR) -j$(JOBS) --target $(FUZZ_TARGETS)
-	@bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(RADIOSITY)
+
+# The long campaign: every target to FUZZ_RUNS executions (default 1,000,000) or FUZZ_SECONDS
+# (default 3600), two at a time; writes fuzz/results/campaign.md (hours on 2 cores: not in CI).
+fuzz-campaign: fuzz-build
+	@bash fuzz/campaign.sh $(FUZZ_DIR) $(RADIOSITY)
 
 clean:
 	rm -rf $(BUILD_DIR) $(SANITIZE_DIR) $(FUZZ_DIR) out

@@ -14,18 +14,16 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include <cctype>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "formats/atomic_file.h"
 #include "formats/patch_mesh_polydata.h"
 #include "formats/vtk_messages.h"
+#include "formats/vtp_guard.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
-#include "scene/limits.h"
 
 // JSON for Eigen's RGB triples, and field lists for the settings and statistics: one list
 // serves both writing and reading.
@@ -261,113 +259,6 @@ class FieldReader {
   std::string file_;
 };
 
-/// Every array's `type` must be one VTK's XML reader knows: with an unknown one (type="Float28")
-/// VTK 9.1 creates no array and then dereferences it (a crash the fuzzer found).
-void check_array_types(const std::filesystem::path& file, const std::string& xml) {
-  static const std::set<std::string> known{"Int8",   "UInt8", "Int16",  "UInt16",  "Int32",
-                                           "UInt32", "Int64", "UInt64", "Float32", "Float64",
-                                           "String", "Bit",   "IdType", "Char",    "UnsignedChar"};
-  for (const std::string tag : {"<DataArray", "<Array"}) {
-    for (size_t at = xml.find(tag); at != std::string::npos; at = xml.find(tag, at + 1)) {
-      const size_t end = xml.find('>', at);
-      const std::string element = xml.substr(at, end == std::string::npos ? end : end - at);
-      const size_t type = element.find(" type=\"");
-      const size_t close = type == std::string::npos ? type : element.find('"', type + 7);
-      const std::string name =
-          close == std::string::npos ? "" : element.substr(type + 7, close - type - 7);
-      if (!known.count(name)) {
-        throw InputError(file.string() + ": an array of unknown type \"" + name.substr(0, 40) +
-                         "\" (not a solution file, or a damaged one)");
-      }
-    }
-  }
-}
-
-/// The binary headers of a .vtp file's appended arrays (at data_start + each array's offset):
-/// with a compressor, [blocks, block size, last block size, compressed sizes...]; without, the
-/// byte count. VTK sizes its buffers from them, so a hostile file could claim gigabytes there:
-/// each header must fit in the file, and what it claims uncompressed must stay within what
-/// limits::kSolutionElements allows (8 corners of 3 doubles per element).
-void check_appended_headers(const std::filesystem::path& file, const std::string& xml,
-                            size_t underscore) {
-  if (underscore == std::string::npos) return;  // no appended data: VTK reads the XML
-  std::error_code error;
-  const auto bytes = static_cast<long double>(std::filesystem::file_size(file, error));
-  if (error) return;
-  const bool compressed = xml.find("compressor=\"") != std::string::npos;
-  const size_t word = xml.find("header_type=\"UInt64\"") != std::string::npos ? 8 : 4;
-  const long double most = 8.0L * 3 * 8 * static_cast<long double>(limits::kSolutionElements);
-  std::ifstream in(file, std::ios::binary);
-  const auto read_word = [&](long double at) -> long double {
-    if (at + word > bytes) return -1;
-    in.seekg(static_cast<std::streamoff>(at));
-    unsigned char b[8] = {};
-    in.read(reinterpret_cast<char*>(b), static_cast<std::streamsize>(word));
-    long double v = 0;
-    for (size_t i = word; i-- > 0;) v = 256 * v + b[i];  // little endian (VTK's default)
-    return v;
-  };
-  const std::string key = "offset=\"";
-  for (size_t at = xml.find(key); at != std::string::npos; at = xml.find(key, at + 1)) {
-    long double offset = 0;
-    for (size_t i = at + key.size();
-         i < xml.size() && std::isdigit(static_cast<unsigned char>(xml[i])); ++i)
-      offset = 10 * offset + (xml[i] - '0');
-    const long double start = static_cast<long double>(underscore + 1) + offset;
-    const long double first = read_word(start);
-    bool bad = first < 0;
-    if (!bad && compressed) {
-      const long double block = read_word(start + word);
-      bad = block < 0 || start + (3 + first) * word > bytes || first * block > most;
-    } else if (!bad) {
-      bad = start + word + first > bytes;
-    }
-    if (bad) {
-      throw InputError(file.string() + ": an appended array's header (offset " +
-                       std::to_string(static_cast<long long>(offset)) +
-                       ") claims more data than the file holds or a solution may have");
-    }
-  }
-}
-
-/// The counts a .vtp file's XML claims (NumberOfPoints, NumberOfPolys, ... of its Piece and
-/// NumberOfTuples of each array), checked against limits::kSolutionElements before VTK
-/// allocates for them: a small compressed file must not claim gigabytes. Reads the XML up to
-/// its appended data (at most the first 64 MiB).
-void check_claimed_size(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  std::string head;
-  std::string chunk(1 << 16, '\0');
-  while (head.size() < (size_t{64} << 20) && head.find("<AppendedData") == std::string::npos &&
-         stream.read(chunk.data(), static_cast<std::streamsize>(chunk.size())).gcount() > 0) {
-    head.append(chunk.data(), static_cast<size_t>(stream.gcount()));
-  }
-  const size_t appended = head.find("<AppendedData");
-  const size_t underscore = appended == std::string::npos ? appended : head.find('_', appended);
-  head = head.substr(0, appended);
-  check_array_types(file, head);
-  check_appended_headers(file, head, underscore);
-  for (const std::string key : {"NumberOfPoints", "NumberOfVerts", "NumberOfLines",
-                                "NumberOfStrips", "NumberOfPolys", "NumberOfTuples"}) {
-    // Arrays hold up to 8 corners per element; cells and points one or a few per element.
-    const long double limit = (key == "NumberOfTuples" ? 8.0L : 4.0L) *
-                              static_cast<long double>(limits::kSolutionElements);
-    for (size_t at = head.find(key + "=\""); at != std::string::npos;
-         at = head.find(key + "=\"", at + 1)) {
-      long double count = 0;
-      for (size_t i = at + key.size() + 2;
-           i < head.size() && std::isdigit(static_cast<unsigned char>(head[i])); ++i)
-        count = 10 * count + (head[i] - '0');
-      if (count > limit) {
-        throw InputError(file.string() + ": " + key + " claims more than " +
-                         std::to_string(static_cast<long long>(limit)) +
-                         ", beyond the limit of a solution file (" +
-                         std::to_string(limits::kSolutionElements) + " elements)");
-      }
-    }
-  }
-}
-
 Rgb rgb_at(vtkDataArray* a, vtkIdType i) {
   double v[3];
   a->GetTuple(i, v);
@@ -384,7 +275,7 @@ Solution read_solution(const std::filesystem::path& file) {
   if (!reader->CanReadFile(file.c_str())) {
     throw InputError(file.string() + ": not a VTK XML PolyData (.vtp) file");
   }
-  check_claimed_size(file);
+  check_solution_structure(file);
   reader->SetFileName(file.c_str());
   reader->Update();
   vtkPolyData* poly = reader->GetOutput();

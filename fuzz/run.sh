@@ -4,11 +4,12 @@
 # the repository's own files. Prints a table of executions per target. Exits 1 when a
 # regression input fails; a new finding of the exploration is kept under BUILD/fuzz-findings/
 # and reported, and fails the run only with FUZZ_STRICT=1 (CI replays the regressions strictly
-# but does not let a new, unrelated finding in a third-party reader block every change; the
-# known open ones are in fuzz/open/).
+# but does not let a new, unrelated finding in a third-party reader block every change).
 # Usage: bash fuzz/run.sh [FUZZ_BUILD_DIR] [SECONDS] [RADIOSITY]   (a build configured with
 # -DRAD_FUZZ=ON; RADIOSITY, the executable that makes the seed solution and image, default
-# build/cli/radiosity)
+# build/cli/radiosity). FUZZ_TARGETS (space-separated) runs only those targets; FUZZ_RUNS stops
+# each target after that many executions too (whichever comes first); FUZZ_NO_HEADER=1 leaves
+# out the table's header (fuzz/campaign.sh joins the rows of parallel runs).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build-fuzz}
@@ -40,10 +41,14 @@ if [ ! -f "$corpus/fuzz_solution/cube.vtp" ]; then
 fi
 
 status=0
-echo "| target | seconds | executions | corpus files | result |"
-echo "|---|---|---|---|---|"
-for target in fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl fuzz_points \
-              fuzz_solution fuzz_exr; do
+if [ "${FUZZ_NO_HEADER:-0}" != 1 ]; then
+  echo "| target | seconds | executions | corpus files | result |"
+  echo "|---|---|---|---|---|"
+fi
+runs=()
+[ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
+for target in ${FUZZ_TARGETS:-fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
+              fuzz_points fuzz_solution fuzz_exr}; do
   exe=$build/fuzz/$target
   dict=()
   [ "$target" = fuzz_scene ] && dict=(-dict=fuzz/scene.dict)
@@ -56,16 +61,18 @@ for target in fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl
       continue
     fi
   fi
-  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0 "$exe" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  started=$(date +%s)
+  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0 "$exe" "${dict[@]}" "${runs[@]}" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$findings/$target-" \
     "$corpus/$target" >"$log" 2>&1
   result=$?
-  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  elapsed=$(($(date +%s) - started))
+  executed=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
   files=$(ls "$corpus/$target" | wc -l)
   if [ $result -eq 0 ]; then
-    echo "| $target | $seconds | ${runs:-?} | $files | clean |"
+    echo "| $target | $elapsed | ${executed:-?} | $files | clean |"
   else
-    echo "| $target | $seconds | ${runs:-?} | $files | FINDING (see $log and $findings/) |"
+    echo "| $target | $elapsed | ${executed:-?} | $files | FINDING (see $log and $findings/) |"
     [ "${FUZZ_STRICT:-0}" = 1 ] && status=1
   fi
 done

@@ -15,8 +15,17 @@ inline constexpr std::uintmax_t kMeshFileBytes = std::uintmax_t{2} << 30;
 /// Polygons in a scene (after meshes are read) and vertices in one polygon.
 inline constexpr long long kPolygons = 10'000'000;
 inline constexpr long long kPolygonVertices = 100'000;
+/// Vertices in one mesh file (three per polygon at most, in a soup of triangles).
+inline constexpr long long kMeshVertices = 3 * kPolygons;
 /// Image side in pixels: the command line's --width/--height limit and the scene camera's.
 inline constexpr int kImageSide = 1 << 15;
+/// An OpenEXR image `compare` reads: its channels, and the bytes of pixels it may claim per byte
+/// of file (ZIP, OpenEXR's densest lossless compression, stops near 1032:1) above a floor that
+/// any image up to 4096 x 4096 x 4 channels passes, however well it compresses. With the image
+/// side above and half the machine's memory, these are checked before pixels are allocated.
+inline constexpr int kImageChannels = 64;
+inline constexpr double kImageBytesPerFileByte = 4096;
+inline constexpr double kImageFloorBytes = 256.0 * (1 << 20);
 /// Elements in a solution file (the counts its XML claims are checked against it before VTK
 /// allocates: points and cells up to 4 per element, array tuples up to 8).
 inline constexpr long long kSolutionElements = 5'000'000;

@@ -1,6 +1,6 @@
 #pragma once
-/// Reading polygon meshes: OBJ, PLY and OFF through OpenMesh; STL by a reader of our own that
-/// keeps every facet (see mesh_reader.cpp).
+/// Reading polygon meshes (OBJ, PLY, OFF, STL) as polygon soups: every face in file order, with
+/// its own vertices (the readers, and why they are ours: mesh_formats.h).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,8 +11,11 @@ namespace rad {
 
 /// Reads the faces of a mesh file as vertex lists in file order (counter-clockwise = front).
 /// `where` names the element for messages. Throws InputError when the file is missing,
-/// unreadable, or of an unsupported format, and when a face cannot be read (it would be lost);
-/// OpenMesh's other remarks are appended to `warnings`. Non-manifold faces are kept.
+/// unreadable, of an unsupported format, malformed (naming the line or element), or claims more
+/// than the limits (scene/limits.h); what a reader skips (OBJ lines and curves, PLY elements
+/// other than vertex and face) is appended to `warnings`. Faces are not validated here: a face
+/// with too few vertices or non-finite coordinates comes back as it is, for polygon validation to
+/// name. Non-manifold faces are kept. Cost: one pass over the file, which is held in memory.
 std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file,
                                                const std::string& where,
                                                std::vector<std::string>& warnings);

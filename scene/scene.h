@@ -1,10 +1,10 @@
 #pragma once
 /// Module `scene` (rad_scene): the scene model (materials, planar polygons, an optional camera,
-/// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes
-/// through OpenMesh) and their validation, the camera, ray casting (Embree behind
-/// ray_caster.h), and the polygons as gatherer faces (polygon_faces.h).
+/// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes,
+/// mesh_reader.h) and their validation, the camera, ray casting (Embree behind ray_caster.h),
+/// and the polygons as gatherer faces (polygon_faces.h).
 ///
-/// May use: geometry, OpenMesh, Embree (in .cpp files only), nlohmann-json.
+/// May use: geometry, Embree (in .cpp files only), nlohmann-json.
 #include <filesystem>
 #include <limits>
 #include <optional>

@@ -4,8 +4,8 @@
 /// the problem, no crash, no hang, nothing written. With the malformed scenes of
 /// tests/bad_scene_cases.h (run the same way by cli_test.cpp) they make the table of
 /// docs/robustness.md. Placeholders in `command`: {h} tests/data/hostile, {b} tests/data/bad,
-/// {d} data, {g} the inputs the test generates, {o} an empty output folder, {s} a solution of
-/// the Cornell box.
+/// {d} data, {f} fuzz/regressions, {g} the inputs the test generates, {o} an empty output
+/// folder, {s} a solution of the Cornell box.
 #include <string>
 #include <vector>
 
@@ -69,7 +69,7 @@ inline const std::vector<HostileInput>& hostile_inputs() {
       {"PLY claiming 4 billion vertices", "info {h}/ply_claims_billions.json",
        "claims_billions.ply", "claims"},
       {"truncated binary PLY", "info {h}/ply_truncated_binary.json", "truncated_binary.ply",
-       "cannot read"},
+       "claims 3 vertices, more than its 5 bytes hold"},
       {"OFF with negative counts", "info {h}/off_negative_counts.json", "negative_counts.off",
        "claims a negative count"},
       {"OFF claiming 3 billion vertices", "info {h}/off_claims_billions.json",
@@ -79,6 +79,12 @@ inline const std::vector<HostileInput>& hostile_inputs() {
       {"truncated binary STL", "info {h}/stl_truncated_binary.json", "truncated_binary.stl",
        "neither binary nor ASCII STL"},
       {"empty STL", "info {h}/stl_empty.json", "empty.stl", "STL"},
+      {"OBJ face corner '//1/' (aborted OpenMesh's reader)", "info {g}/obj_fuzz_crash.json",
+       "obj_fuzz_crash.obj", "line 6: cannot parse face corner"},
+      {"PLY header with a broken format line (hung OpenMesh's reader)",
+       "info {g}/ply_fuzz_timeout.json", "ply_fuzz_timeout.ply", "expected one 'format"},
+      {"binary OFF claiming 500 million vertices", "info {g}/off_binary_claims.json",
+       "off_binary_claims.off", "claims 500000000 vertices, more than the limit"},
       // Probe points
       {"binary bytes as points", "probe {d}/cornell-box/scene.json -s {s} --points {h}/binary.csv",
        "binary.csv:", "expected 6 fields"},
@@ -107,7 +113,17 @@ inline const std::vector<HostileInput>& hostile_inputs() {
        "text.vtp", "not a VTK XML PolyData"},
       {"a foreign .vtp",
        "render {d}/cornell-box/scene.json --method patches -s {h}/foreign.vtp -o {o}/p.exr",
-       "foreign.vtp", "missing"},
+       "foreign.vtp", "not a solution file"},
+      {"solution with a misspelled element (crashed VTK's reader)",
+       "render {d}/cornell-box/scene.json --method patches "
+       "-s {f}/fuzz_solution/fuzz_solution-crash-ee6655ee55046fc348a4585a28a5aa10d4a38827 "
+       "-o {o}/p.exr",
+       "FieldData/Arra", "unexpected element <Arra>"},
+      {"solution array of unknown type (crashed VTK's reader)",
+       "render {d}/cornell-box/scene.json --method patches "
+       "-s {f}/fuzz_solution/fuzz_solution-crash-8e2450ce73a8993e920d9e5e29ecce279ad6a43e "
+       "-o {o}/p.exr",
+       "DataArray[0] \"ambient\"", "unknown type \"Float28\""},
       {"solution of another scene",
        "render {d}/light-over-floor/scene.json --method patches -s {s} -o {o}/p.exr",
        "solution.vtp", "solved for a different scene"},

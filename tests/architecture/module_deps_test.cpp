@@ -55,7 +55,7 @@ const std::vector<std::pair<std::string, ThirdParty>>& third_party() {
       {"Embree", {std::regex(R"(^embree\d?/)"), {"scene"}, true}},
       {"VTK", {std::regex(R"(^vtk\w*\.h$)"), {"formats", "viz", "cli"}, false}},
       {"OpenEXR", {std::regex(R"(^(Imf|Imath|Iex|OpenEXR/|Imath/))"), {"formats"}, false}},
-      {"OpenMesh", {std::regex(R"(^OpenMesh/)"), {"scene", "radiosity"}, false}},
+      {"OpenMesh", {std::regex(R"(^OpenMesh/)"), {"radiosity"}, false}},
       {"TBB",
        {std::regex(R"(^(tbb|oneapi)/)"),
         {"radiosity", "localpass", "render", "experiments", "cli"},

@@ -4,6 +4,7 @@
 // to a path, also writes the table of docs/robustness.md (make docs): each class and the message
 // it gets, with the folders as placeholders.
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,8 +26,32 @@ void replace_all(std::string& text, const std::string& from, const std::string& 
     text.replace(at, from.size(), to);
 }
 
-/// The generated inputs, too large or too odd to commit.
+/// A scene of one object, the mesh file `mesh` (copied from `source` when given).
+void write_mesh_scene(const fs::path& dir, const std::string& mesh, const fs::path& source = {}) {
+  if (!source.empty()) fs::copy_file(source, dir / mesh, fs::copy_options::overwrite_existing);
+  std::ofstream(dir / (fs::path(mesh).stem().string() + ".json"))
+      << R"({"materials": {"m": {}}, "objects": [{"material": "m", "mesh": ")" << mesh << "\"}]}";
+}
+
+/// The generated inputs, too large or too odd to commit, and scenes around the fuzzers' mesh
+/// findings (stored without an extension, as the fuzz targets take them).
 void write_generated_inputs(const fs::path& dir) {
+  const fs::path found = kRoot / "fuzz/regressions";
+  write_mesh_scene(
+      dir, "obj_fuzz_crash.obj",
+      found / "fuzz_mesh_obj/fuzz_mesh_obj-crash-c4beedf2e7b6187a905b9a4c94545ffee5b8ef9b");
+  write_mesh_scene(
+      dir, "ply_fuzz_timeout.ply",
+      found / "fuzz_mesh_ply/fuzz_mesh_ply-timeout-c6417da4a95f481c74741673b6835f0b7a7a1494");
+  {
+    // Binary OFF: big-endian int32 counts (500 million vertices) and nothing else.
+    std::string bytes = "OFF BINARY\n";
+    for (const uint32_t count : {500'000'000u, 1u, 0u}) {
+      for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>(count >> shift);
+    }
+    std::ofstream(dir / "off_binary_claims.off", std::ios::binary) << bytes;
+    write_mesh_scene(dir, "off_binary_claims.off");
+  }
   std::ofstream(dir / "deep.json") << std::string(100000, '[');
   {
     std::ofstream many(dir / "many_vertices.json");
@@ -62,6 +87,7 @@ TEST(HostileInput, EveryClassExitsOneWithOneLineAndWritesNothing) {
     replace_all(command, "{d}", (kRoot / "data").string());
     replace_all(command, "{s}", (work / "solution.vtp").string());
     replace_all(command, "{g}", inputs.string());
+    replace_all(command, "{f}", (kRoot / "fuzz/regressions").string());
     replace_all(command, "{o}", outputs.string());
     const Result r = run(command, 120);
     EXPECT_EQ(r.exit_code, 1) << what << ": radiosity " << command << "\n" << r.err;
@@ -86,6 +112,7 @@ TEST(HostileInput, EveryClassExitsOneWithOneLineAndWritesNothing) {
     replace_all(message, (kData / "hostile").string(), "tests/data/hostile");
     replace_all(message, (kData / "bad").string(), "tests/data/bad");
     replace_all(message, (kRoot / "data").string(), "data");
+    replace_all(message, (kRoot / "fuzz/regressions").string(), "fuzz/regressions");
     replace_all(message, inputs.string(), "(generated)");
     replace_all(message, outputs.string(), "out");
     replace_all(message, work.string(), "(test)");

@@ -24,9 +24,22 @@ namespace fs = std::filesystem;
 
 /// The reader each target fuzzes (fuzz/fuzz_*.cpp), given the input file.
 const std::map<std::string, std::function<void(const fs::path&)>>& readers() {
-  const auto read_mesh = [](const fs::path& f) {
-    std::vector<std::string> warnings;
-    read_mesh_faces(f, "m", warnings);
+  // The mesh readers choose by extension, which the stored inputs lack (the fuzz target adds
+  // it, fuzz/fuzz_mesh.cpp): each is read as a copy with its target's extension.
+  const auto read_mesh_as = [](const char* extension) {
+    return [extension](const fs::path& f) {
+      const fs::path copy =
+          fs::temp_directory_path() / ("rad_fuzz_regression_" + f.filename().string() + extension);
+      fs::copy_file(f, copy, fs::copy_options::overwrite_existing);
+      std::vector<std::string> warnings;
+      try {
+        read_mesh_faces(copy, "m", warnings);
+      } catch (...) {
+        fs::remove(copy);
+        throw;
+      }
+      fs::remove(copy);
+    };
   };
   static const std::map<std::string, std::function<void(const fs::path&)>> all{
       {"fuzz_scene",
@@ -36,10 +49,10 @@ const std::map<std::string, std::function<void(const fs::path&)>>& readers() {
          text << in.rdbuf();
          parse_scene(text.str(), f);
        }},
-      {"fuzz_mesh_obj", read_mesh},
-      {"fuzz_mesh_ply", read_mesh},
-      {"fuzz_mesh_off", read_mesh},
-      {"fuzz_mesh_stl", read_mesh},
+      {"fuzz_mesh_obj", read_mesh_as(".obj")},
+      {"fuzz_mesh_ply", read_mesh_as(".ply")},
+      {"fuzz_mesh_off", read_mesh_as(".off")},
+      {"fuzz_mesh_stl", read_mesh_as(".stl")},
       {"fuzz_points", [](const fs::path& f) { read_points_csv(f); }},
       {"fuzz_solution", [](const fs::path& f) { read_solution(f); }},
       {"fuzz_exr",

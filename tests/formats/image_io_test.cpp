@@ -5,6 +5,7 @@
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
 
+#include <cstring>
 #include <fstream>
 #include <random>
 
@@ -57,6 +58,54 @@ TEST(ImageIo, ReadingMissingOrBogusExrNamesTheFile) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bogus.exr"), std::string::npos) << e.what();
   }
+}
+
+/// `file` with the data window of its header (the box2i after "dataWindow") set to the given
+/// corners: a header claiming an image the file does not hold.
+void set_data_window(const std::filesystem::path& file, int32_t max_x, int32_t max_y) {
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  const std::string key("dataWindow\0box2i\0", 17);
+  const size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  // After the key: the attribute's size (16), then min.x, min.y, max.x, max.y.
+  std::memcpy(bytes.data() + at + key.size() + 4 + 8, &max_x, 4);
+  std::memcpy(bytes.data() + at + key.size() + 4 + 12, &max_y, 4);
+  std::ofstream(file, std::ios::binary) << bytes;
+}
+
+std::string read_error(const std::filesystem::path& file) {
+  try {
+    read_exr(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ImageIo, ExrClaimingMorePixelsThanItHoldsIsRefusedBeforeAllocating) {
+  const auto dir = temp_dir();
+  write_exr(dir / "small.exr", random_image(4, 4, 2));
+  EXPECT_EQ(read_error(dir / "small.exr"), "") << "the untouched file must read";
+  // Beyond the side limit: OpenEXR's own header check, before it sizes its offset tables.
+  std::filesystem::copy_file(dir / "small.exr", dir / "wide.exr");
+  set_data_window(dir / "wide.exr", 100'000, 3);
+  EXPECT_NE(read_error(dir / "wide.exr").find("wide.exr: cannot read OpenEXR"), std::string::npos)
+      << read_error(dir / "wide.exr");
+  // Within the side limit, 8000 x 8000 from a file that holds 4 x 8000 zeros (so that it has
+  // the table of chunk offsets OpenEXR reads first): a few kilobytes claiming 2 GiB.
+  write_exr(dir / "claims.exr", Image(4, 8000));
+  set_data_window(dir / "claims.exr", 7999, 7999);
+  EXPECT_NE(read_error(dir / "claims.exr").find("an image of 8000 x 8000 x 3 channels would take"),
+            std::string::npos)
+      << read_error(dir / "claims.exr");
+  // Channels beyond the limit.
+  ChannelImage many{1, 1, {}};
+  for (int c = 0; c <= 64; ++c) many.channels[std::to_string(100 + c)] = {1.0f};
+  write_exr_channels(dir / "many.exr", many);
+  EXPECT_NE(read_error(dir / "many.exr").find("65 channels, more than 64"), std::string::npos)
+      << read_error(dir / "many.exr");
 }
 
 TEST(ImageIo, SrgbEncodingMatchesTheStandard) {

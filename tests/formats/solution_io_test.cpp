@@ -105,5 +105,58 @@ TEST(SolutionIo, RejectsMissingAndForeignFiles) {
   }
 }
 
+/// Replaces the first `from` in `text` by `to`; the test fails if there is none.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "the solution file has no " << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(SolutionIo, RefusesEveryDeviationFromTheLayoutVtksReaderTrusts) {
+  // VTK 9.1's reader dereferences null on some of these and allocates what others claim
+  // (formats/vtp_guard.h); each must be refused before it runs, naming the element.
+  const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/light-over-floor/scene.json");
+  const auto file = scratch("layout.vtp");
+  write_solution(file, small_solution(scene), scene);
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NO_THROW(read_solution(file));
+  const struct {
+    std::string from, to, words;
+  } cases[] = {
+      {"<Array type=\"String\"", "<Arra type=\"String\"", "FieldData/Arra: unexpected element"},
+      {"<Array type=\"String\"", "<Array pyyte=\"String\"", "an array without a type"},
+      {"type=\"Float64\"", "type=\"Float28\"", "an array of unknown type \"Float28\""},
+      {"format=\"appended\"", "format=\"ascii\"", "an array not appended"},
+      {" offset=\"", " ofset=\"", "no offset"},
+      {"NumberOfTuples=\"1\"", "NumberOfTuples=\"x\"", "NumberOfTuples=\"x\" is not a count"},
+      {"NumberOfTuples=\"1\"", "NumberOfTuples=\"99999999999\"", "NumberOfTuples claims more"},
+      {"NumberOfPolys=\"", "NumberOfPolys=\"-", "is not a count"},
+      {"NumberOfComponents=\"3\"", "NumberOfComponents=\"0\"", "NumberOfComponents is 0"},
+      {"<Piece", "<Piece></Piece><Piece", "a second <Piece>"},
+      {"<PointData", "<PointData></PointData><PointData", "a second <PointData>"},
+      {"type=\"PolyData\"", "type=\"ImageData\"", "not a VTK XML PolyData"},
+      {"compressor=\"vtkZLibDataCompressor\"", "compressor=\"vtkMagic\"",
+       "unknown compressor \"vtkMagic\""},
+      {"byte_order=\"LittleEndian\"", "byte_order=\"Middle\"", "Unsupported byte_order=\"Middle\""},
+      {"encoding=\"raw\"", "encoding=\"base64\"", "appended data not raw"},
+      {"</PolyData>", "", "cannot parse the XML"},
+  };
+  for (const auto& c : cases) {
+    const auto bad = scratch("layout_bad.vtp");
+    std::ofstream(bad, std::ios::binary) << replaced(bytes, c.from, c.to);
+    try {
+      read_solution(bad);
+      ADD_FAILURE() << c.from << " -> " << c.to << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.words), std::string::npos)
+          << c.from << " -> " << c.to << "\n  gave: " << e.what();
+      EXPECT_NE(std::string(e.what()).find("layout_bad.vtp"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rad

@@ -71,8 +71,8 @@ TEST(SceneLoader, ReadsEveryMeshFormat) {
 }
 
 TEST(SceneLoader, KeepsNonManifoldFaces) {
-  // Three quads share one edge; OpenMesh cannot put them in one half-edge mesh, but none of
-  // the user's polygons may be lost.
+  // Three quads share one edge, which no half-edge mesh can hold; none of the user's polygons
+  // may be lost.
   const Scene scene = load_scene(kData / "meshes/fin_obj.json");
   EXPECT_EQ(scene.polygons.size(), 3u);
   EXPECT_NEAR(scene.total_area(), 3.0, 1e-12);
