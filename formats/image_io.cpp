@@ -15,6 +15,7 @@
 #include <exception>
 
 #include "formats/atomic_file.h"
+#include "formats/exr_guard.h"
 #include "scene/error.h"
 #include "scene/limits.h"
 
@@ -44,53 +45,6 @@ void write_exr_channels(const std::filesystem::path& file, const ChannelImage& i
   out.commit();
 }
 
-namespace {
-
-/// The pixels an OpenEXR header claims, against the limits (scene/limits.h), before anything is
-/// allocated for them: a small file must not claim gigabytes.
-void check_claimed_pixels(const std::filesystem::path& file, const Imf::Header& header) {
-  const Imath::Box2i window = header.dataWindow();
-  // Coordinates far from 0 would overflow the slice arithmetic below.
-  constexpr long long kFar = 1LL << 30;
-  for (const long long v : {window.min.x, window.min.y, window.max.x, window.max.y}) {
-    if (v < -kFar || v > kFar) {
-      throw InputError(file.string() + ": the data window reaches " + std::to_string(v) +
-                       ", beyond +-2^30");
-    }
-  }
-  const long long width = 1LL + window.max.x - window.min.x;
-  const long long height = 1LL + window.max.y - window.min.y;
-  if (width < 1 || height < 1 || width > limits::kImageSide || height > limits::kImageSide) {
-    throw InputError(file.string() + ": an image of " + std::to_string(width) + " x " +
-                     std::to_string(height) + " (each side must be 1 to " +
-                     std::to_string(limits::kImageSide) + ")");
-  }
-  long long channels = 0;
-  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channels;
-  if (channels > limits::kImageChannels) {
-    throw InputError(file.string() + ": " + std::to_string(channels) + " channels, more than " +
-                     std::to_string(limits::kImageChannels));
-  }
-  // Float pixels as read, and read_exr's RGB copy in doubles.
-  const double bytes = static_cast<double>(width) * static_cast<double>(height) *
-                       (4.0 * static_cast<double>(channels) + 24.0);
-  std::error_code error;
-  const double file_bytes = static_cast<double>(std::filesystem::file_size(file, error));
-  const double memory =
-      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
-  if (bytes > std::max(limits::kImageFloorBytes, limits::kImageBytesPerFileByte * file_bytes) ||
-      (memory > 0 && bytes > 0.5 * memory)) {
-    throw InputError(file.string() + ": an image of " + std::to_string(width) + " x " +
-                     std::to_string(height) + " x " + std::to_string(channels) +
-                     " channels would take " +
-                     std::to_string(static_cast<long long>(bytes / (1 << 20))) +
-                     " MiB, more than its " + std::to_string(static_cast<long long>(file_bytes)) +
-                     " bytes can hold or half of this machine's memory");
-  }
-}
-
-}  // namespace
-
 ChannelImage read_exr_channels(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file))
     throw InputError(file.string() + ": no such image file");
@@ -99,8 +53,9 @@ ChannelImage read_exr_channels(const std::filesystem::path& file) {
     // it sizes its tables of chunk offsets from the data window.
     Imf::Header::setMaxImageSize(limits::kImageSide, limits::kImageSide);
     Imf::Header::setMaxTileSize(limits::kImageSide, limits::kImageSide);
+    check_exr_claims(file);
     Imf::InputFile exr(file.c_str());
-    check_claimed_pixels(file, exr.header());
+    check_exr_pixels(file, exr.header());
     const Imath::Box2i window = exr.header().dataWindow();
     ChannelImage image;
     image.width = window.max.x - window.min.x + 1;

@@ -160,8 +160,8 @@ class Guard {
   void check_piece(vtkXMLDataElement* piece, const std::string& path) {
     // Cells and points: one or a few per element.
     const long double most = 4.0L * limits::kSolutionElements;
-    for (const char* key : {"NumberOfPoints", "NumberOfVerts", "NumberOfLines", "NumberOfStrips",
-                            "NumberOfPolys"}) {
+    for (const char* key :
+         {"NumberOfPoints", "NumberOfVerts", "NumberOfLines", "NumberOfStrips", "NumberOfPolys"}) {
       piece_[key] = count(piece, path, key, most, /*required=*/false);
     }
   }
@@ -194,8 +194,8 @@ class Guard {
                    AppendedArrays& appended) const {
     // With no type or an unknown one, VTK 9.1 creates no array and dereferences it.
     static const std::set<std::string> known{
-        "Int8",  "UInt8",   "Int16",   "UInt16", "Int32", "UInt32",   "Int64",       "UInt64",
-        "Float32", "Float64", "String", "Bit",   "IdType", "Char", "UnsignedChar"};
+        "Int8",    "UInt8",   "Int16",  "UInt16", "Int32",  "UInt32", "Int64",       "UInt64",
+        "Float32", "Float64", "String", "Bit",    "IdType", "Char",   "UnsignedChar"};
     const char* type = array->GetAttribute("type");
     if (!type || !known.count(type)) {
       fail(path, type ? "an array of unknown type \"" + std::string(type).substr(0, 40) + "\""

@@ -20,12 +20,14 @@ inline constexpr long long kMeshVertices = 3 * kPolygons;
 /// Image side in pixels: the command line's --width/--height limit and the scene camera's.
 inline constexpr int kImageSide = 1 << 15;
 /// An OpenEXR image `compare` reads: its channels, and the bytes of pixels it may claim per byte
-/// of file (ZIP, OpenEXR's densest lossless compression, stops near 1032:1) above a floor that
-/// any image up to 4096 x 4096 x 4 channels passes, however well it compresses. With the image
-/// side above and half the machine's memory, these are checked before pixels are allocated.
+/// of file (as read: 4 per channel and 24 for the RGB copy) above a floor of 1 MiB. Lossless
+/// OpenEXR compressions stop near 1032:1 (ZIP's deflate; RLE 64:1, PIZ 32:1), so every image
+/// `render` writes passes; only a lossy DWA file of an almost constant image could exceed it.
+/// With the image side above and half the machine's memory, these are checked before pixels
+/// are allocated.
 inline constexpr int kImageChannels = 64;
 inline constexpr double kImageBytesPerFileByte = 4096;
-inline constexpr double kImageFloorBytes = 256.0 * (1 << 20);
+inline constexpr double kImageFloorBytes = 1 << 20;
 /// Elements in a solution file (the counts its XML claims are checked against it before VTK
 /// allocates: points and cells up to 4 per element, array tuples up to 8).
 inline constexpr long long kSolutionElements = 5'000'000;

@@ -52,7 +52,7 @@ Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings) {
       soup.end_face();
     } else {
       static constexpr std::array<std::string_view, 5> kGeometryNotRead{"l", "p", "curv", "curv2",
-                                                                         "surf"};
+                                                                        "surf"};
       for (const std::string_view kind : kGeometryNotRead) {
         if (keyword == kind && std::find(skipped.begin(), skipped.end(), kind) == skipped.end()) {
           skipped.emplace_back(kind);

@@ -79,7 +79,7 @@ Faces read_ascii(const MeshSource& source, OffLines& lines, Words header_rest,
   }
   const long long vertices = header[wanted - 2], faces = header[wanted - 1];
   const std::uintmax_t rest = source.bytes.size() - lines.offset();
-  source.check_claim(vertices, "vertices", limits::kMeshVertices, 6, rest);  // "0 0 0\n"
+  source.check_claim(vertices, "vertices", limits::kMeshVertices, 6, rest);       // "0 0 0\n"
   source.check_claim(faces, "faces", limits::kPolygons, 2, rest - 6 * vertices);  // "0\n"
 
   SoupBuilder soup(source, 0);
@@ -106,8 +106,9 @@ Faces read_ascii(const MeshSource& source, OffLines& lines, Words header_rest,
     if (!n || *n < 0) at("face " + std::to_string(f) + " does not start with its vertex count");
     for (long long i = 0; i < *n; ++i) {
       const auto index = words.next(word) ? parse_integer(word) : std::nullopt;
-      if (!index) at("face " + std::to_string(f) + " has fewer than " + std::to_string(*n) +
-                     " vertex indices");
+      if (!index)
+        at("face " + std::to_string(f) + " has fewer than " + std::to_string(*n) +
+           " vertex indices");
       soup.add_index(*index);
     }
     soup.end_face();

@@ -20,9 +20,9 @@ std::optional<Type> parse_type(std::string_view name) {
     Type type;
   };
   static constexpr Named kTypes[] = {
-      {"char", "int8", Type::kInt8},       {"uchar", "uint8", Type::kUint8},
-      {"short", "int16", Type::kInt16},    {"ushort", "uint16", Type::kUint16},
-      {"int", "int32", Type::kInt32},      {"uint", "uint32", Type::kUint32},
+      {"char", "int8", Type::kInt8},        {"uchar", "uint8", Type::kUint8},
+      {"short", "int16", Type::kInt16},     {"ushort", "uint16", Type::kUint16},
+      {"int", "int32", Type::kInt32},       {"uint", "uint32", Type::kUint32},
       {"float", "float32", Type::kFloat32}, {"double", "float64", Type::kFloat64}};
   for (const Named& t : kTypes) {
     if (name == t.old_name || name == t.new_name) return t.type;
@@ -33,13 +33,17 @@ std::optional<Type> parse_type(std::string_view name) {
 size_t size_of(Type type) {
   switch (type) {
     case Type::kInt8:
-    case Type::kUint8: return 1;
+    case Type::kUint8:
+      return 1;
     case Type::kInt16:
-    case Type::kUint16: return 2;
+    case Type::kUint16:
+      return 2;
     case Type::kInt32:
     case Type::kUint32:
-    case Type::kFloat32: return 4;
-    case Type::kFloat64: return 8;
+    case Type::kFloat32:
+      return 4;
+    case Type::kFloat64:
+      return 8;
   }
   return 0;
 }
@@ -48,8 +52,8 @@ bool is_integer(Type type) { return type != Type::kFloat32 && type != Type::kFlo
 
 struct Property {
   std::string name;
-  Type type = Type::kFloat32;              ///< of the scalar, or of a list's items
-  std::optional<Type> list_count_type;     ///< set for a list
+  Type type = Type::kFloat32;           ///< of the scalar, or of a list's items
+  std::optional<Type> list_count_type;  ///< set for a list
 };
 
 struct Element {
@@ -81,7 +85,8 @@ Header read_header(const MeshSource& source) {
     source.fail("header line " + std::to_string(lines.number()) + ": " + detail);
   };
   std::string_view line, word;
-  if (!lines.next(line) || line != "ply") source.fail("not a PLY file: it does not start with 'ply'");
+  if (!lines.next(line) || line != "ply")
+    source.fail("not a PLY file: it does not start with 'ply'");
   Header header;
   bool format_seen = false;
   while (true) {
@@ -164,14 +169,22 @@ class ValueReader {
       return *value;
     }
     switch (type) {
-      case Type::kInt8: return read<int8_t>(what);
-      case Type::kUint8: return read<uint8_t>(what);
-      case Type::kInt16: return read<int16_t>(what);
-      case Type::kUint16: return read<uint16_t>(what);
-      case Type::kInt32: return read<int32_t>(what);
-      case Type::kUint32: return read<uint32_t>(what);
-      case Type::kFloat32: return read<float>(what);
-      case Type::kFloat64: return read<double>(what);
+      case Type::kInt8:
+        return read<int8_t>(what);
+      case Type::kUint8:
+        return read<uint8_t>(what);
+      case Type::kInt16:
+        return read<int16_t>(what);
+      case Type::kUint16:
+        return read<uint16_t>(what);
+      case Type::kInt32:
+        return read<int32_t>(what);
+      case Type::kUint32:
+        return read<uint32_t>(what);
+      case Type::kFloat32:
+        return read<float>(what);
+      case Type::kFloat64:
+        return read<double>(what);
     }
     return 0;
   }
@@ -223,7 +236,8 @@ Faces read_ply(const MeshSource& source, std::vector<std::string>& warnings) {
     for (int p = 0; p < static_cast<int>(e.properties.size()); ++p) {
       const Property& property = e.properties[p];
       for (int c = 0; c < 3; ++c) {
-        if (e.name == "vertex" && !property.list_count_type && property.name == std::string(1, "xyz"[c])) {
+        if (e.name == "vertex" && !property.list_count_type &&
+            property.name == std::string(1, "xyz"[c])) {
           xyz[c] = p;
         }
       }

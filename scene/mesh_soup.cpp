@@ -68,11 +68,11 @@ Faces SoupBuilder::take() {
     faces[f].reserve(face_ends_[f] - start);
     for (size_t i = start; i < face_ends_[f]; ++i) {
       if (indices_[i] < 0 || indices_[i] >= n) {
-        source_.fail("face " + std::to_string(f) + ": vertex index " +
-                     std::to_string(indices_[i] + first_index_) + " is out of range " +
-                     (n == 0 ? std::string("(the file has no vertices)")
-                             : std::to_string(first_index_) + ".." +
-                                   std::to_string(n - 1 + first_index_)));
+        source_.fail(
+            "face " + std::to_string(f) + ": vertex index " +
+            std::to_string(indices_[i] + first_index_) + " is out of range " +
+            (n == 0 ? std::string("(the file has no vertices)")
+                    : std::to_string(first_index_) + ".." + std::to_string(n - 1 + first_index_)));
       }
       faces[f].push_back(vertices_[static_cast<size_t>(indices_[i])]);
     }

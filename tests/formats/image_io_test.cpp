@@ -88,11 +88,36 @@ TEST(ImageIo, ExrClaimingMorePixelsThanItHoldsIsRefusedBeforeAllocating) {
   const auto dir = temp_dir();
   write_exr(dir / "small.exr", random_image(4, 4, 2));
   EXPECT_EQ(read_error(dir / "small.exr"), "") << "the untouched file must read";
-  // Beyond the side limit: OpenEXR's own header check, before it sizes its offset tables.
+  // A constant image is ZIP's best case: the densest file `render` can write must still read.
+  write_exr(dir / "constant.exr", Image(2048, 2048));
+  EXPECT_EQ(read_error(dir / "constant.exr"), "")
+      << std::filesystem::file_size(dir / "constant.exr") << " bytes";
+  // Beyond the side limit, before OpenEXR sizes its offset tables from it.
   std::filesystem::copy_file(dir / "small.exr", dir / "wide.exr");
   set_data_window(dir / "wide.exr", 100'000, 3);
-  EXPECT_NE(read_error(dir / "wide.exr").find("wide.exr: cannot read OpenEXR"), std::string::npos)
+  EXPECT_NE(read_error(dir / "wide.exr").find("wide.exr: part 0 claims an image of 100001 x 4"),
+            std::string::npos)
       << read_error(dir / "wide.exr");
+  // 4 x 32768 ZIP scan lines need 2048 chunk offsets: more than a 521-byte file holds.
+  std::filesystem::copy_file(dir / "small.exr", dir / "tall.exr");
+  set_data_window(dir / "tall.exr", 3, 32767);
+  EXPECT_NE(read_error(dir / "tall.exr").find("implies 2048 chunks"), std::string::npos)
+      << read_error(dir / "tall.exr");
+  // An attribute whose size claims 2 GB (OpenEXR would allocate it before reading).
+  {
+    std::ifstream in(dir / "small.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::string key("compression\0compression\0", 24);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const int32_t huge = 0x7fffffff;
+    std::memcpy(bytes.data() + at + key.size(), &huge, 4);
+    std::ofstream(dir / "attribute.exr", std::ios::binary) << bytes;
+  }
+  EXPECT_NE(read_error(dir / "attribute.exr")
+                .find("header attribute \"compression\" claims 2147483647 bytes"),
+            std::string::npos)
+      << read_error(dir / "attribute.exr");
   // Within the side limit, 8000 x 8000 from a file that holds 4 x 8000 zeros (so that it has
   // the table of chunk offsets OpenEXR reads first): a few kilobytes claiming 2 GiB.
   write_exr(dir / "claims.exr", Image(4, 8000));

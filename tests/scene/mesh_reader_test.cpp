@@ -29,9 +29,10 @@ const std::filesystem::path kData = RAD_TEST_DATA;
 class MeshFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("rad_mesh_reader_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-               "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    folder_ =
+        std::filesystem::temp_directory_path() /
+        ("rad_mesh_reader_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(folder_);
   }
   void TearDown() override { std::filesystem::remove_all(folder_); }
@@ -61,13 +62,14 @@ class MeshFiles : public ::testing::Test {
 const std::vector<Vec3> kSquare{{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}};
 
 TEST_F(MeshFiles, ObjCornersInEveryFormAndRelativeIndices) {
-  const Faces faces = read("a.obj",
-                           "# comment\nmtllib a.mtl\no square\n"
-                           "v 0 0 0\nv 0 0 1 # trailing comment\nv 1 0 1 1.0\nv +1 0 0 0.5 0.5 0.5\n"
-                           "vt 0 0\nvn 0 1 0\ng one\nusemtl white\ns off\n"
-                           "f 1/1/1 2//1 3/1 4\n"
-                           "fo -4 -3 -2 -1\r\n"
-                           "f\t1 2\t3\n");
+  const Faces faces =
+      read("a.obj",
+           "# comment\nmtllib a.mtl\no square\n"
+           "v 0 0 0\nv 0 0 1 # trailing comment\nv 1 0 1 1.0\nv +1 0 0 0.5 0.5 0.5\n"
+           "vt 0 0\nvn 0 1 0\ng one\nusemtl white\ns off\n"
+           "f 1/1/1 2//1 3/1 4\n"
+           "fo -4 -3 -2 -1\r\n"
+           "f\t1 2\t3\n");
   ASSERT_EQ(faces.size(), 3u);
   EXPECT_EQ(faces[0], kSquare);
   EXPECT_EQ(faces[1], kSquare) << "-1 is the latest vertex";
@@ -123,18 +125,21 @@ TEST_F(MeshFiles, OffVariants) {
                  "# made by hand\nOFF 4 1 0\n\n0 0 0\n0 0 1 # c\n1 0 1\n1 0 0\n4 0 1 2 3 255 0 0\n")
                 .at(0),
             kSquare);
-  EXPECT_EQ(read("c.off", "COFF\n4 1 4\n0 0 0 1 1 1 1\n0 0 1 1 1 1 1\n1 0 1 1 1 1 1\n"
-                          "1 0 0 1 1 1 1\n4 0 1 2 3\n")
+  EXPECT_EQ(read("c.off",
+                 "COFF\n4 1 4\n0 0 0 1 1 1 1\n0 0 1 1 1 1 1\n1 0 1 1 1 1 1\n"
+                 "1 0 0 1 1 1 1\n4 0 1 2 3\n")
                 .at(0),
             kSquare);
-  EXPECT_EQ(read("n.off", "NOFF\n4 1 0\n0 0 0 0 1 0\n0 0 1 0 1 0\n1 0 1 0 1 0\n1 0 0 0 1 0\n"
-                          "4 0 1 2 3\n")
+  EXPECT_EQ(read("n.off",
+                 "NOFF\n4 1 0\n0 0 0 0 1 0\n0 0 1 0 1 0\n1 0 1 0 1 0\n1 0 0 0 1 0\n"
+                 "4 0 1 2 3\n")
                 .at(0),
             kSquare);
   // Homogeneous coordinates are divided by w.
   EXPECT_EQ(read("h.off", "4OFF\n4 1 0\n0 0 0 2\n0 0 2 2\n4 0 4 4\n0.5 0 0 0.5\n4 0 1 2 3\n").at(0),
             kSquare);
-  EXPECT_EQ(read("d.off", "nOFF\n3\n4 1 0\n0 0 0\n0 0 1\n1 0 1\n1 0 0\n4 0 1 2 3\n").at(0), kSquare);
+  EXPECT_EQ(read("d.off", "nOFF\n3\n4 1 0\n0 0 0\n0 0 1\n1 0 1\n1 0 0\n4 0 1 2 3\n").at(0),
+            kSquare);
 }
 
 /// Big-endian bytes of a 32-bit value, as binary OFF stores them.
@@ -260,7 +265,8 @@ TEST_F(MeshFiles, PlyBinaryOfEitherByteOrder) {
 }
 
 TEST_F(MeshFiles, PlyRefusesWhatItCannotRead) {
-  const std::string vertex = "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string vertex =
+      "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n";
   const std::string face = "element face 1\nproperty list uchar int vertex_indices\n";
   const struct {
     std::string bytes, words;
@@ -284,7 +290,8 @@ TEST_F(MeshFiles, PlyRefusesWhatItCannotRead) {
       {"ply\nformat ascii 1.0\nwhatever\nend_header\n", "header line 3: unexpected 'whatever'"},
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n",
        "the vertices have no x, y and z"},
-      {"ply\nformat ascii 1.0\n" + vertex + "element face 1\nproperty int a\nend_header\n0 0 0\n1\n",
+      {"ply\nformat ascii 1.0\n" + vertex +
+           "element face 1\nproperty int a\nend_header\n0 0 0\n1\n",
        "the faces have no list 'vertex_indices'"},
       {"ply\nformat ascii 1.0\n" + face + "end_header\n3 0 0 0\n", "no element 'vertex'"},
       {"ply\nformat ascii 1.0\n" + vertex + face + "end_header\n0 0 0\n3 0 0 9\n",
@@ -321,8 +328,9 @@ TEST_F(MeshFiles, StlBinaryAndAscii) {
                                 "\n solid s\nfacet normal 0 1 0\nouter loop\nvertex 0 0 0\n"
                                 "vertex 0 0 1\n vertex 1 0 1\nendloop\nendfacet\nendsolid s\n");
   EXPECT_EQ(from_ascii, from_binary);
-  EXPECT_NE(error_of("n.stl", "solid\nvertex 0 zero 0\n").find("facet 0: cannot parse vertex "
-                                                               "coordinate 'zero'"),
+  EXPECT_NE(error_of("n.stl", "solid\nvertex 0 zero 0\n")
+                .find("facet 0: cannot parse vertex "
+                      "coordinate 'zero'"),
             std::string::npos);
   EXPECT_NE(error_of("e.stl", "").find("neither binary nor ASCII STL"), std::string::npos);
 }
