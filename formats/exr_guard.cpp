@@ -22,13 +22,17 @@ namespace {
 long double lines_per_chunk(int compression) {
   switch (compression) {
     case 3:
-    case 5: return 16;
+    case 5:
+      return 16;
     case 4:
     case 6:
     case 7:
-    case 8: return 32;
-    case 9: return 256;
-    default: return 1;
+    case 8:
+      return 32;
+    case 9:
+      return 256;
+    default:
+      return 1;
   }
 }
 
@@ -53,8 +57,7 @@ long double chunks_of(const PartClaims& part) {
   const long double height = 1.0L + part.window[3] - part.window[1];
   if (!part.tiled) return std::ceil(height / lines_per_chunk(part.compression));
   if (part.tile[0] == 0 || part.tile[1] == 0) return 0;  // OpenEXR refuses it
-  const long double tiles =
-      std::ceil(width / part.tile[0]) * std::ceil(height / part.tile[1]);
+  const long double tiles = std::ceil(width / part.tile[0]) * std::ceil(height / part.tile[1]);
   // Mipmaps add at most a third, ripmaps at most three times (the levels halve each side);
   // a lower bound is what matters here, so the first level stands for them all.
   return tiles;
@@ -118,8 +121,9 @@ void check_exr_claims(const std::filesystem::path& file) {
         claims.level_mode = value[8] & 0x0f;
       } else if (name == "compression" && type == "compression" && size == 1) {
         claims.compression = value[0];
-      } else if (name == "type" && (std::strncmp(reinterpret_cast<char*>(value), "tiledimage", 10) == 0 ||
-                                    std::strncmp(reinterpret_cast<char*>(value), "deeptile", 8) == 0)) {
+      } else if (name == "type" &&
+                 (std::strncmp(reinterpret_cast<char*>(value), "tiledimage", 10) == 0 ||
+                  std::strncmp(reinterpret_cast<char*>(value), "deeptile", 8) == 0)) {
         claims.tiled = true;
       }
     }

@@ -12,8 +12,9 @@ radiosity=${2:-build/cli/radiosity}
 runs=${FUZZ_RUNS:-1000000}
 seconds=${FUZZ_SECONDS:-3600}
 jobs=${FUZZ_JOBS:-2}
-targets="fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl fuzz_points \
-fuzz_solution fuzz_exr"
+# The slowest first, so that the parallel runs end together.
+targets="fuzz_exr fuzz_solution fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
+fuzz_points"
 rows=$(mktemp -d)
 trap 'rm -rf "$rows"' EXIT
 commit=$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . ':!fuzz/results' || echo "-dirty")

@@ -146,6 +146,14 @@ Header read_header(const MeshSource& source) {
   return header;
 }
 
+/// An element instance ("face 12"), named only when a message needs it: most files have
+/// millions and no message.
+struct Instance {
+  const std::string& element;
+  long long index;
+  std::string name() const { return element + " " + std::to_string(index); }
+};
+
 /// Reads the body's values in order, as doubles, from either ASCII or binary data.
 class ValueReader {
  public:
@@ -156,16 +164,17 @@ class ValueReader {
         text_(source.bytes.substr(header.body)) {}
 
   /// The next value, of the given type; `what` names it if the data ends or is malformed.
-  double next(Type type, const std::string& what) {
+  double next(Type type, const Instance& what) {
     if (ascii_) {
       std::string_view word;
       while (!words_.next(word)) {
         std::string_view line;
-        if (!text_.next(line)) source_.fail("the data ends in " + what);
+        if (!text_.next(line)) source_.fail("the data ends in " + what.name());
         words_ = Words(line);
       }
       const auto value = is_integer(type) ? parse_integer_value(word) : parse_real(word);
-      if (!value) source_.fail("cannot parse '" + std::string(word.substr(0, 40)) + "' in " + what);
+      if (!value)
+        source_.fail("cannot parse '" + std::string(word.substr(0, 40)) + "' in " + what.name());
       return *value;
     }
     switch (type) {
@@ -199,9 +208,9 @@ class ValueReader {
     return n ? std::optional<double>(static_cast<double>(*n)) : std::nullopt;
   }
   template <class T>
-  double read(const std::string& what) {
+  double read(const Instance& what) {
     T value{};
-    if (!binary_.read(value)) source_.fail("the data ends in " + what);
+    if (!binary_.read(value)) source_.fail("the data ends in " + what.name());
     return static_cast<double>(value);
   }
   const MeshSource& source_;
@@ -260,7 +269,7 @@ Faces read_ply(const MeshSource& source, std::vector<std::string>& warnings) {
     }
 
     for (long long i = 0; i < e.count; ++i) {
-      const std::string what = e.name + " " + std::to_string(i);
+      const Instance what{e.name, i};
       Vec3 p;
       for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
         const Property& property = e.properties[k];
@@ -272,9 +281,9 @@ Faces read_ply(const MeshSource& source, std::vector<std::string>& warnings) {
           continue;
         }
         const double n = values.next(*property.list_count_type, what);
-        if (n < 0) source.fail(what + " has a list of negative length");
+        if (n < 0) source.fail(what.name() + " has a list of negative length");
         if (k == corners && n > limits::kPolygonVertices) {
-          source.fail(what + " has more than " + std::to_string(limits::kPolygonVertices) +
+          source.fail(what.name() + " has more than " + std::to_string(limits::kPolygonVertices) +
                       " vertices");
         }
         for (long long item = 0; item < static_cast<long long>(n); ++item) {

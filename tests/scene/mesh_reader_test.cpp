@@ -44,6 +44,18 @@ class MeshFiles : public ::testing::Test {
     warnings.clear();
     return read_mesh_faces(file, "scene.json: objects[0] (" + name + ")", warnings);
   }
+  /// A file's bytes and the words of the message it must get.
+  struct Refused {
+    std::string bytes, words;
+  };
+  /// Each case, written to a file of that name, must be refused naming the file and the words.
+  void expect_refused(const std::string& name, const std::vector<Refused>& cases) {
+    for (const auto& c : cases) {
+      const std::string message = error_of(name, c.bytes);
+      EXPECT_NE(message.find("objects[0] (" + name + ")"), std::string::npos) << c.bytes << message;
+      EXPECT_NE(message.find(c.words), std::string::npos) << c.bytes << "\n  gave: " << message;
+    }
+  }
   /// The message read() throws, or "" when it reads.
   std::string error_of(const std::string& name, const std::string& bytes) {
     try {
@@ -91,9 +103,7 @@ TEST_F(MeshFiles, ObjWarnsOnceForGeometryItSkips) {
 }
 
 TEST_F(MeshFiles, ObjRefusesWhatItCannotRead) {
-  const struct {
-    std::string bytes, words;
-  } cases[] = {
+  const std::vector<Refused> cases{
       {"v 0 0\nf 1 1 1\n", "line 1: a vertex needs 3 coordinates"},
       {"v 0 zero 0\n", "line 1: cannot parse vertex coordinate 'zero'"},
       {"v 0 0 0\nf 1 0 1\n", "line 2: cannot parse face corner '0'"},
@@ -104,11 +114,7 @@ TEST_F(MeshFiles, ObjRefusesWhatItCannotRead) {
       {"f 99999999999999999999 1 1\n", "cannot parse face corner"},
       {"# nothing\n", "has no readable faces"},
   };
-  for (const auto& c : cases) {
-    const std::string message = error_of("bad.obj", c.bytes);
-    EXPECT_NE(message.find("objects[0] (bad.obj)"), std::string::npos) << c.bytes << message;
-    EXPECT_NE(message.find(c.words), std::string::npos) << c.bytes << "\n  gave: " << message;
-  }
+  expect_refused("bad.obj", cases);
 }
 
 TEST_F(MeshFiles, ObjKeepsNonFiniteCoordinatesForValidationToName) {
@@ -178,9 +184,7 @@ TEST_F(MeshFiles, OffBinary) {
 }
 
 TEST_F(MeshFiles, OffRefusesWhatItCannotRead) {
-  const struct {
-    std::string bytes, words;
-  } cases[] = {
+  const std::vector<Refused> cases{
       {"", "the file is empty"},
       {"PLY\n", "line 1: expected the keyword OFF"},
       {"OFF\n", "the header has no vertex and face counts"},
@@ -195,11 +199,7 @@ TEST_F(MeshFiles, OffRefusesWhatItCannotRead) {
       {"OFF\n3 1 0\n0 0 0\n0 0 1\n1 0 1\n-3 0 1 2\n", "face 0 does not start with its vertex"},
       {"nOFF\n4\n3 1 0\n0 0 0 0\n", "vertices of dimension 4"},
   };
-  for (const auto& c : cases) {
-    const std::string message = error_of("bad.off", c.bytes);
-    EXPECT_NE(message.find("objects[0] (bad.off)"), std::string::npos) << c.bytes << message;
-    EXPECT_NE(message.find(c.words), std::string::npos) << c.bytes << "\n  gave: " << message;
-  }
+  expect_refused("bad.off", cases);
 }
 
 TEST_F(MeshFiles, PlyAsciiWithPropertiesAroundTheOnesRead) {
@@ -268,9 +268,7 @@ TEST_F(MeshFiles, PlyRefusesWhatItCannotRead) {
   const std::string vertex =
       "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n";
   const std::string face = "element face 1\nproperty list uchar int vertex_indices\n";
-  const struct {
-    std::string bytes, words;
-  } cases[] = {
+  const std::vector<Refused> cases{
       {"this is not a ply file\n", "not a PLY file"},
       {"ply\nformat ascii 1.0\n" + vertex, "the header has no 'end_header'"},
       {"ply\n" + vertex + "end_header\n0 0 0\n", "the header has no 'format' line"},
@@ -306,11 +304,7 @@ TEST_F(MeshFiles, PlyRefusesWhatItCannotRead) {
            "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n3 0 0 0\n",
        "face vertex indices of a real type"},
   };
-  for (const auto& c : cases) {
-    const std::string message = error_of("bad.ply", c.bytes);
-    EXPECT_NE(message.find("objects[0] (bad.ply)"), std::string::npos) << c.bytes << message;
-    EXPECT_NE(message.find(c.words), std::string::npos) << c.bytes << "\n  gave: " << message;
-  }
+  expect_refused("bad.ply", cases);
 }
 
 TEST_F(MeshFiles, StlBinaryAndAscii) {
