@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "formats/solution_io.h"
+#include "octree/octree.h"
 #include "scene/error.h"
 #include "scene/limits.h"
 #include "scene/scene_loader.h"
@@ -19,12 +20,36 @@ Scene load_scene_reporting(const std::string& path) {
   return scene;
 }
 
+namespace {
+
+double machine_memory() {
+  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+         static_cast<double>(::sysconf(_SC_PAGESIZE));
+}
+
+}  // namespace
+
 Solution load_solution_for(const Scene& scene, const std::string& scene_path,
                            const std::string& solution_path) {
   Solution solution = read_solution(solution_path);
   if (solution.scene_fingerprint != scene.fingerprint()) {
     throw InputError(solution_path + ": solved for a different scene (" + solution.scene_path +
                      "); solve " + scene_path + " again");
+  }
+  // The octree the local pass builds over the elements, at its largest (Octree::max_voxels),
+  // against the machine's memory: refuse before building it.
+  double corners = 0;
+  for (const Element& e : solution.elements) corners += static_cast<double>(e.corners.size());
+  const auto items = static_cast<long long>(solution.elements.size());
+  const double octree_bytes =
+      static_cast<double>(Octree::max_voxels(items)) * (sizeof(Voxel) + sizeof(int)) +
+      static_cast<double>(items) * (sizeof(OctreeItem) + sizeof(int)) + corners * sizeof(Vec3);
+  if (const double memory = machine_memory(); memory > 0 && octree_bytes > 0.5 * memory) {
+    throw InputError(solution_path + ": the octree of its " + std::to_string(items) +
+                     " elements may need " +
+                     std::to_string(static_cast<long long>(octree_bytes / (1 << 30))) +
+                     " GiB, more than half of this machine's " +
+                     std::to_string(static_cast<long long>(memory / (1 << 30))) + " GiB");
   }
   return solution;
 }
@@ -40,8 +65,7 @@ CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const s
   // the EXR's floats), against the machine's memory: refuse before allocating.
   constexpr double kBytesPerPixel = 2 * 24 + 3 * 4 + 1 + 4 * 4;
   const double bytes = kBytesPerPixel * spec.width * static_cast<double>(spec.height);
-  const double memory =
-      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  const double memory = machine_memory();
   if (memory > 0 && bytes > 0.5 * memory) {
     const std::string source =
         width > 0 || height > 0 ? command + " --width/--height" : scene_path + ": camera";

@@ -96,6 +96,16 @@ void Octree::build(int v, std::vector<int> items, const OctreeSettings& settings
     build(first + octant, std::move(children[octant]), settings, root_proxy);
 }
 
+long long Octree::max_voxels(long long items, const OctreeSettings& settings) {
+  long long inner = 0, level_width = 1;  // 8^level, capped once it exceeds the items' share
+  const long long per_level = items / (std::max(settings.min_items, 0) + 1);
+  for (int level = 0; level < settings.max_level; ++level) {
+    inner += std::min(level_width, per_level);
+    level_width = std::min(level_width * 8, per_level + 1);
+  }
+  return 1 + 8 * inner;
+}
+
 std::vector<int> Octree::items_below(int v) const {
   std::vector<int> out;
   std::vector<int> stack{v};

@@ -63,6 +63,12 @@ class Octree {
   /// Items of voxel v and its descendants.
   std::vector<int> items_below(int v) const;
 
+  /// The most voxels an octree of `items` items can have, for an estimate of its memory before
+  /// it is built. Below max_level, the inner voxels of one level hold disjoint sets of more
+  /// than min_items items, so a level has at most min(8^level, items / (min_items + 1)) of them;
+  /// each has 8 children, and the root is one more.
+  static long long max_voxels(long long items, const OctreeSettings& settings = {});
+
   /// Eq. 7: Bmax(v) * FF(x, silhouette of v's bounds), FF = 1 when x is inside them.
   Rgb bound_eq7(int v, const Vec3& x, const Vec3& n) const;
   /// Eq. 8: as eq. 7 with the maximum taken only over items that can send light to x (x on

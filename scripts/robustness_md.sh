@@ -19,7 +19,8 @@ claim before anything is allocated (`scene/limits.h`: JSON nesting 64, a scene f
 mesh file 2 GiB, 10 million polygons, 30 million vertices in a mesh, 100,000 vertices per
 polygon, 32,768 pixels a side, an image larger than half the machine's memory, an OpenEXR image
 of more than 64 channels or claiming more than 4096 bytes of pixels per byte of file, 5 million
-elements in a solution file). The mesh readers are our own (`scene/mesh_formats.h`: every face
+elements in a solution file, an octree whose largest possible size exceeds half the machine's
+memory). The mesh readers are our own (`scene/mesh_formats.h`: every face
 kept, every count and index checked); a solution file is held to the layout `solve` writes
 before VTK's reader sees it (`formats/vtp_guard.h`). VTK's own log is captured and becomes part
 of the one line; control characters never reach the terminal.

@@ -64,6 +64,32 @@ double box_form_factor_monte_carlo(const Eigen::AlignedBox3d& box, const Vec3& x
   return static_cast<double>(hits) / samples;
 }
 
+TEST(Octree, MaxVoxelsBoundsEveryTreeEvenWhenItemsCrowdOnePoint) {
+  // Seeded soups of small triangles: spread over a box, and crowded near one corner so that
+  // splitting runs to max_level; one bright item keeps the energy criterion from stopping it.
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const int n : {1, 5, 6, 40, 500, 3000}) {
+    for (const double spread : {1.0, 1e-6}) {
+      std::vector<OctreeItem> items(static_cast<size_t>(n));
+      for (size_t i = 0; i < items.size(); ++i) {
+        const Vec3 p = spread * Vec3(u(rng), u(rng), u(rng));
+        items[i].corners = {p, p + Vec3(spread * 1e-3, 0, 0), p + Vec3(0, spread * 1e-3, 0)};
+        items[i].radiosity = Rgb::Constant(i == 0 ? 1e6 : u(rng));
+      }
+      items.push_back({{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, Vec3::UnitZ(), Rgb::Ones()});
+      const long long count = static_cast<long long>(items.size());
+      const Octree tree(std::move(items));
+      EXPECT_LE(static_cast<long long>(tree.voxels().size()), Octree::max_voxels(count))
+          << n << " items, spread " << spread;
+    }
+  }
+  // By hand: one item is a leaf root; five items in one octant at every level split down to
+  // max_level (8): one inner voxel a level, 8 children each.
+  EXPECT_EQ(Octree::max_voxels(1), 1);
+  EXPECT_EQ(Octree::max_voxels(5), 1 + 8 * 8);
+}
+
 TEST(Octree, BoxFormFactorMatchesMonteCarloAndIsOneInside) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
