@@ -36,6 +36,23 @@ Solution load_solution_for(const Scene& scene, const std::string& scene_path,
     throw InputError(solution_path + ": solved for a different scene (" + solution.scene_path +
                      "); solve " + scene_path + " again");
   }
+  // The fingerprint says the scene is the same; a damaged or hostile file could still name
+  // polygons it does not have.
+  const auto polygons = static_cast<int>(scene.polygons.size());
+  for (size_t i = 0; i < solution.patches.size(); ++i) {
+    if (solution.patches[i].polygon >= polygons) {
+      throw InputError(solution_path + ": patch " + std::to_string(i) + " names polygon " +
+                       std::to_string(solution.patches[i].polygon) + "; the scene has " +
+                       std::to_string(polygons));
+    }
+  }
+  for (size_t i = 0; i < solution.elements.size(); ++i) {
+    if (solution.elements[i].polygon >= polygons) {
+      throw InputError(solution_path + ": cell " + std::to_string(i) + " names polygon " +
+                       std::to_string(solution.elements[i].polygon) + "; the scene has " +
+                       std::to_string(polygons));
+    }
+  }
   // The octree the local pass builds over the elements, at its largest (Octree::max_voxels),
   // against the machine's memory: refuse before building it.
   double corners = 0;

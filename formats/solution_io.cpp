@@ -14,6 +14,8 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -231,18 +233,34 @@ class FieldReader {
     std::vector<std::vector<Vec3>> out;
     vtkIdType next = 0;
     for (vtkIdType i = 0; i < counts->GetNumberOfTuples(); ++i) {
-      const int n = static_cast<int>(counts->GetTuple1(i));
-      if (n < 3 || next + n > xyz->GetNumberOfTuples())
-        fail(std::string("malformed \"") + count_name + "\"");
+      const auto what = std::string("\"") + count_name + "\"[" + std::to_string(i) + "]";
+      const int n =
+          index(counts, i, static_cast<double>(xyz->GetNumberOfTuples() - next) + 1, what);
+      if (n < 3) fail(what + ": fewer than 3 corners");
       std::vector<Vec3> polygon;
-      for (int k = 0; k < n; ++k, ++next) {
-        double p[3];
-        xyz->GetTuple(next, p);
-        polygon.emplace_back(p[0], p[1], p[2]);
-      }
+      for (int k = 0; k < n; ++k, ++next) polygon.push_back(finite(xyz, next, xyz_name));
       out.push_back(std::move(polygon));
     }
     return out;
+  }
+  /// Value i of a one-component array as an index in [0, end), or fail naming `what`: a file's
+  /// NaN or 1e300 must not reach a cast to int.
+  int index(vtkDataArray* a, vtkIdType i, double end, const std::string& what) const {
+    const double v = a->GetTuple1(i);
+    if (!(v >= 0 && v < end && v < 2147483647.0) || v != std::floor(v)) {
+      fail(what + " = " + std::to_string(v) + " is not an index below " +
+           std::to_string(static_cast<long long>(std::min(end, 2147483647.0))));
+    }
+    return static_cast<int>(v);
+  }
+  /// Tuple i of a three-component array, or fail when it is not finite.
+  Vec3 finite(vtkDataArray* a, vtkIdType i, const char* name) const {
+    double v[3];
+    a->GetTuple(i, v);
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+      fail(std::string("\"") + name + "\"[" + std::to_string(i) + "] is not finite");
+    }
+    return {v[0], v[1], v[2]};
   }
 
  private:
@@ -258,12 +276,6 @@ class FieldReader {
   vtkPolyData* poly_;
   std::string file_;
 };
-
-Rgb rgb_at(vtkDataArray* a, vtkIdType i) {
-  double v[3];
-  a->GetTuple(i, v);
-  return {v[0], v[1], v[2]};
-}
 
 }  // namespace
 
@@ -294,7 +306,9 @@ Solution read_solution(const std::filesystem::path& file) {
   } catch (const Json::exception& e) {
     in.fail(std::string("malformed settings or stats: ") + e.what());
   }
-  s.ambient = rgb_at(in.field("ambient", 3), 0);
+  vtkDataArray* ambient = in.field("ambient", 3);
+  if (ambient->GetNumberOfTuples() != 1) in.fail("\"ambient\" is not one RGB triple");
+  s.ambient = in.finite(ambient, 0, "ambient");
 
   // Patches.
   const auto patch_corners = in.corners("patch_corner_count", "patch_corners");
@@ -311,13 +325,13 @@ Solution read_solution(const std::filesystem::path& file) {
   }
   for (vtkIdType i = 0; i < patch_count; ++i) {
     Patch p;
-    p.polygon = static_cast<int>(patch_polygon->GetTuple1(i));
+    p.polygon = in.index(patch_polygon, i, 2147483647.0, "\"patch_polygon\"");
     p.corners = patch_corners[i];
     Vec3 centroid;
     element_geometry(p.corners, &p.area, &centroid);
-    p.normal = rgb_at(patch_normal, i);
-    p.radiosity = rgb_at(patch_radiosity, i);
-    p.unshot = rgb_at(patch_unshot, i);
+    p.normal = in.finite(patch_normal, i, "patch_normal");
+    p.radiosity = in.finite(patch_radiosity, i, "patch_radiosity");
+    p.unshot = in.finite(patch_unshot, i, "patch_unshot");
     s.patches.push_back(std::move(p));
   }
 
@@ -329,19 +343,19 @@ Solution read_solution(const std::filesystem::path& file) {
   vtkDataArray* patch = in.cell("patch", 1);
   vtkDataArray* level = in.cell("level", 1);
   if (static_cast<vtkIdType>(element_corners.size()) != cells ||
-      radiosity->GetNumberOfTuples() != cells) {
+      radiosity->GetNumberOfTuples() != cells || parent->GetNumberOfTuples() != cells ||
+      patch->GetNumberOfTuples() != cells || level->GetNumberOfTuples() != cells) {
     in.fail("element arrays disagree with the number of cells");
   }
   for (vtkIdType i = 0; i < cells; ++i) {
     Element e;
-    e.polygon = static_cast<int>(parent->GetTuple1(i));
-    e.patch = static_cast<int>(patch->GetTuple1(i));
-    if (e.patch < 0 || e.patch >= patch_count)
-      in.fail("cell " + std::to_string(i) + ": patch index out of range");
-    e.level = static_cast<int>(level->GetTuple1(i));
+    const std::string cell = "cell " + std::to_string(i);
+    e.polygon = in.index(parent, i, 2147483647.0, cell + " parent_polygon");
+    e.patch = in.index(patch, i, static_cast<double>(patch_count), cell + " patch");
+    e.level = in.index(level, i, 64, cell + " level");
     e.corners = element_corners[i];
     element_geometry(e.corners, &e.area, &e.centroid);
-    e.radiosity = rgb_at(radiosity, i);
+    e.radiosity = in.finite(radiosity, i, "radiosity");
     s.elements.push_back(std::move(e));
   }
   return s;

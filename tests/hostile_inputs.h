@@ -124,6 +124,12 @@ inline const std::vector<HostileInput>& hostile_inputs() {
        "-s {f}/fuzz_solution/fuzz_solution-crash-8e2450ce73a8993e920d9e5e29ecce279ad6a43e "
        "-o {o}/p.exr",
        "DataArray[0] \"ambient\"", "unknown type \"Float28\""},
+      {"solution naming a polygon its scene lacks",
+       "render {d}/cornell-box/scene.json --method patches -s {g}/wrong_polygon.vtp -o {o}/p.exr",
+       "wrong_polygon.vtp", "names polygon 20; the scene has 20"},
+      {"solution with a NaN radiosity",
+       "render {d}/cornell-box/scene.json --method patches -s {g}/nan_radiosity.vtp -o {o}/p.exr",
+       "nan_radiosity.vtp", "is not finite"},
       {"solution of another scene",
        "render {d}/light-over-floor/scene.json --method patches -s {s} -o {o}/p.exr",
        "solution.vtp", "solved for a different scene"},

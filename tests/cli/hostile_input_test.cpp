@@ -8,9 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
+#include "formats/solution_io.h"
+#include "scene/scene_loader.h"
 #include "tests/bad_scene_cases.h"
 #include "tests/cli/run_cli.h"
 #include "tests/hostile_inputs.h"
@@ -76,6 +79,19 @@ TEST(HostileInput, EveryClassExitsOneWithOneLineAndWritesNothing) {
       run("solve " + quoted(kRoot / "data/cornell-box/scene.json") +
           " --patch-size 0.25 --refine-threshold 0 -o " + quoted(work / "solution.vtp"));
   ASSERT_EQ(solved.exit_code, 0) << solved.err;
+  {
+    // Solutions of the right scene with values no solve writes: a polygon the scene lacks, a
+    // NaN radiosity. Both pass the file's layout checks; the values must be refused.
+    const rad::Scene scene = rad::load_scene(kRoot / "data/cornell-box/scene.json");
+    rad::Solution wrong = rad::read_solution(work / "solution.vtp");
+    rad::Scene larger = scene;  // the writer meshes by polygon: give it the one named
+    larger.polygons.push_back(scene.polygons.back());
+    wrong.elements[0].polygon = static_cast<int>(scene.polygons.size());
+    rad::write_solution(inputs / "wrong_polygon.vtp", wrong, larger);
+    rad::Solution nan = rad::read_solution(work / "solution.vtp");
+    nan.elements[1].radiosity.y() = std::numeric_limits<double>::quiet_NaN();
+    rad::write_solution(inputs / "nan_radiosity.vtp", nan, scene);
+  }
 
   std::string table = "| input | message (exit 1) |\n|---|---|\n";
   const auto check = [&](const std::string& what, std::string command, const std::string& names,
