@@ -16,8 +16,15 @@ namespace {
 /// One line, whatever a message holds: line breaks, escape codes and other control characters
 /// (a library's coloured log, a file name with a newline) become spaces.
 std::string one_line(const std::string& message) {
+  // A message quotes what it found in a file, which may be one 2 GB "word": a line stays
+  // readable at 1000 characters.
+  constexpr size_t kLongest = 1000;
   std::string out;
   for (const char c : message) {
+    if (out.size() == kLongest) {
+      out += " [...]";
+      break;
+    }
     const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
     if (control && (out.empty() || out.back() == ' ')) continue;
     out += control ? ' ' : c;

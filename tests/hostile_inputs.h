@@ -83,6 +83,8 @@ inline const std::vector<HostileInput>& hostile_inputs() {
        "obj_fuzz_crash.obj", "line 6: cannot parse face corner"},
       {"PLY header with a broken format line (hung OpenMesh's reader)",
        "info {g}/ply_fuzz_timeout.json", "ply_fuzz_timeout.ply", "expected one 'format"},
+      {"OBJ coordinate of 100,000 characters", "info {g}/obj_long_word.json", "obj_long_word.obj",
+       "line 1: cannot parse vertex coordinate 'xxxx"},
       {"binary OFF claiming 500 million vertices", "info {g}/off_binary_claims.json",
        "off_binary_claims.off", "claims 500000000 vertices, more than the limit"},
       // Probe points

@@ -133,6 +133,7 @@ TEST(SolutionIo, RefusesEveryDeviationFromTheLayoutVtksReaderTrusts) {
       {" offset=\"", " ofset=\"", "no offset"},
       {"NumberOfTuples=\"1\"", "NumberOfTuples=\"x\"", "NumberOfTuples=\"x\" is not a count"},
       {"NumberOfTuples=\"1\"", "NumberOfTuples=\"99999999999\"", "NumberOfTuples claims more"},
+      {"NumberOfTuples=\"1\"", "NumberOfTuples=\"2\"", "its data holds 1 strings, not the 2"},
       {"NumberOfPolys=\"", "NumberOfPolys=\"-", "is not a count"},
       {"NumberOfComponents=\"3\"", "NumberOfComponents=\"0\"", "NumberOfComponents is 0"},
       {"<Piece", "<Piece></Piece><Piece", "a second <Piece>"},
