@@ -2,10 +2,11 @@
 # The long fuzz campaign (issue 16): every target until FUZZ_RUNS executions (default 1,000,000)
 # or FUZZ_SECONDS (default 3600, the issue's "one million executions or one hour"), FUZZ_JOBS
 # targets at a time (default 2), each after replaying its regression set. Writes
-# fuzz/results/campaign.md: the machine and one row per target with the commit it ran. With
-# FUZZ_TARGETS (space-separated) only those run, and the other rows of the last campaign stay
-# (a target rerun after a fix). Exits 1 when a target has a finding (kept under
-# BUILD/fuzz-findings/).
+# fuzz/results/campaign.md: the machine and one row per target with the commit it ran. Each
+# target's row is kept in fuzz/results/rows/<target>.md; with FUZZ_TARGETS (space-separated;
+# empty: none, only the table is assembled) only those run, and the table takes the other rows
+# from there or, failing that, from the last table (a target rerun after a fix). Exits 1 when a
+# row has a finding (kept under BUILD/fuzz-findings/).
 # Usage: bash fuzz/campaign.sh [FUZZ_BUILD_DIR] [RADIOSITY]   (make fuzz-campaign)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -17,21 +18,27 @@ jobs=${FUZZ_JOBS:-2}
 # The slowest first, so that the parallel runs end together.
 all="fuzz_exr fuzz_solution fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
 fuzz_points"
-targets=${FUZZ_TARGETS:-$all}
+targets=${FUZZ_TARGETS-$all}
 rows=$(mktemp -d)
 trap 'rm -rf "$rows"' EXIT
 commit=$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . ':!fuzz/results' || echo "-dirty")
 out=fuzz/results/campaign.md
+kept=fuzz/results/rows
+mkdir -p "$kept"
 
 export build seconds radiosity runs rows
-printf '%s\n' $targets | xargs -P "$jobs" -I{} bash -c \
+printf '%s\n' $targets | grep . | xargs -r -P "$jobs" -I{} bash -c \
   'FUZZ_TARGETS={} FUZZ_RUNS=$runs FUZZ_NO_HEADER=1 bash fuzz/run.sh "$build" "$seconds" "$radiosity" >"$rows/{}.md"'
 for t in $targets; do
-  sed -i "s/ |\$/ | $commit, $(date -u +%Y-%m-%d) |/" "$rows/$t.md"
+  sed "s/ |\$/ | $commit, $(date -u +%Y-%m-%d) |/" "$rows/$t.md" >"$kept/$t.md"
 done
-# Rows of targets not rerun come from the last campaign.
+# Rows of targets not run now: kept ones, or the last table's.
 for t in $all; do
-  if [ ! -s "$rows/$t.md" ] && [ -f "$out" ]; then grep "^| $t |" "$out" >"$rows/$t.md"; fi
+  if [ -s "$kept/$t.md" ]; then
+    cp "$kept/$t.md" "$rows/$t.md"
+  elif [ -f "$out" ]; then
+    grep "^| $t |" "$out" >"$rows/$t.md"
+  fi
 done
 
 mkdir -p fuzz/results
