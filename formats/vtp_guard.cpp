@@ -47,6 +47,28 @@ const std::map<std::string, std::set<std::string>>& layout() {
 
 bool is_array(const std::string& name) { return name == "Array" || name == "DataArray"; }
 
+/// The attributes each element may have: those VTK writes for a solution. VTK ignores others,
+/// so a misspelled one ("NumberOfCompon") silently drops the value it was meant to give.
+const std::set<std::string>& attributes_of(const std::string& element) {
+  static const std::map<std::string, std::set<std::string>> allowed{
+      {"VTKFile", {"type", "version", "byte_order", "header_type", "compressor"}},
+      {"Piece",
+       {"NumberOfPoints", "NumberOfVerts", "NumberOfLines", "NumberOfStrips", "NumberOfPolys"}},
+      {"PointData", {"Scalars", "Vectors", "Normals", "Tensors", "TCoords"}},
+      {"CellData", {"Scalars", "Vectors", "Normals", "Tensors", "TCoords"}},
+      {"Array",
+       {"type", "Name", "NumberOfComponents", "NumberOfTuples", "format", "offset", "RangeMin",
+        "RangeMax"}},
+      {"DataArray",
+       {"type", "Name", "NumberOfComponents", "NumberOfTuples", "format", "offset", "RangeMin",
+        "RangeMax"}},
+      {"AppendedData", {"encoding"}},
+  };
+  static const std::set<std::string> none;
+  const auto it = allowed.find(element);
+  return it == allowed.end() ? none : it->second;
+}
+
 /// An appended array, with what its XML says its data must hold: VTK reads as many bytes as the
 /// XML implies from what the binary header says is there, and dereferences null where the two
 /// disagree (a header of 0 blocks for an array that has values, found by the fuzzer).
@@ -83,6 +105,13 @@ class Guard {
             AppendedArrays& appended) {
     const std::string name = element->GetName() ? element->GetName() : "";
     const auto& allowed = layout().at(name);
+    for (int a = 0; a < element->GetNumberOfAttributes(); ++a) {
+      const char* attribute = element->GetAttributeName(a);
+      if (!attribute || !attributes_of(name).count(attribute)) {
+        fail(path, "unexpected attribute \"" +
+                       std::string(attribute ? attribute : "").substr(0, 40) + "\"");
+      }
+    }
     if (name == "VTKFile") check_root(element, path, appended);
     if (name == "Piece") check_piece(element, path);
     if (is_array(name)) check_array(element, path, parent, appended);
@@ -184,6 +213,8 @@ class Guard {
       const auto it = piece_.find(key);
       return static_cast<long double>(it == piece_.end() ? 0 : it->second);
     };
+    // A field array has no piece to count it: `solve` always writes its NumberOfTuples.
+    if (parent == "FieldData") fail(path, "a field array without NumberOfTuples");
     if (parent == "PointData" || parent == "Points") return counted("NumberOfPoints");
     if (parent == "CellData") {
       return counted("NumberOfVerts") + counted("NumberOfLines") + counted("NumberOfStrips") +
@@ -225,7 +256,7 @@ class Guard {
       } else {
         a.exact_bytes = n * static_cast<long double>(value_bytes(kind));
       }
-    } else if (parent != "FieldData") {
+    } else {
       // A connectivity: values exactly when its piece has cells of its kind.
       const auto it = piece_.find("NumberOf" + parent);
       a.empty = it == piece_.end() || it->second == 0 ? 1 : 0;

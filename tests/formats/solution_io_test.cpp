@@ -127,10 +127,12 @@ TEST(SolutionIo, RefusesEveryDeviationFromTheLayoutVtksReaderTrusts) {
     std::string from, to, words;
   } cases[] = {
       {"<Array type=\"String\"", "<Arra type=\"String\"", "FieldData/Arra: unexpected element"},
-      {"<Array type=\"String\"", "<Array pyyte=\"String\"", "an array without a type"},
+      {"<Array type=\"String\"", "<Array pyyte=\"String\"", "unexpected attribute \"pyyte\""},
+      {"<Array type=\"String\"", "<Array", "an array without a type"},
       {"type=\"Float64\"", "type=\"Float28\"", "an array of unknown type \"Float28\""},
       {"format=\"appended\"", "format=\"ascii\"", "an array not appended"},
-      {" offset=\"", " ofset=\"", "no offset"},
+      {" offset=\"", " ofset=\"", "unexpected attribute \"ofset\""},
+      {"NumberOfTuples=\"1\"", "NumberOfTupl=\"1\"", "unexpected attribute \"NumberOfTupl\""},
       {"NumberOfTuples=\"1\"", "NumberOfTuples=\"x\"", "NumberOfTuples=\"x\" is not a count"},
       {"NumberOfTuples=\"1\"", "NumberOfTuples=\"99999999999\"", "NumberOfTuples claims more"},
       {"NumberOfTuples=\"1\"", "NumberOfTuples=\"2\"", "its data holds 1 strings, not the 2"},
