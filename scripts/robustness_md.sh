@@ -49,9 +49,11 @@ runs every target for 45 seconds: a failing regression input fails CI, a new fin
 reported (`FUZZ_STRICT=1` makes it fail too).
 
 The fuzzers found an abort (OBJ), a hang (PLY header) and a 2 GB reservation (binary OFF) in
-OpenMesh's readers, which the readers of our own replaced, and three null dereferences and two
-out-of-memory reservations in VTK's XML reader, which `formats/vtp_guard.h` now refuses; all are
-in the regression set. The long campaign, `make fuzz-campaign` (every target to a million
+OpenMesh's readers, which the readers of our own replaced; four null dereferences, a heap
+overflow and two out-of-memory reservations in VTK's XML reader, which `formats/vtp_guard.h` now
+refuses, and a read of an empty array of our own; and header attributes OpenEXR allocated at
+their claimed size (up to 2 GB from a file of a few hundred bytes), which `formats/exr_guard.h`
+now checks first. All are in the regression set. The long campaign, `make fuzz-campaign` (every target to a million
 executions or an hour), wrote this table, `fuzz/results/campaign.md`:
 TAIL
 campaign="$(dirname "$0")/../fuzz/results/campaign.md"
