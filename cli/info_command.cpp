@@ -52,6 +52,8 @@ void run_info(const InfoOptions& options) {
       out["materials"].push_back({{"name", mat.name},
                                   {"reflectance", to_json(mat.reflectance)},
                                   {"emission", to_json(mat.emission)},
+                                  {"transmittance", to_json(mat.transmittance)},
+                                  {"specular", to_json(mat.specular)},
                                   {"polygons", polygons_per_material[m]},
                                   {"area", area_per_material[m]}});
     }
@@ -88,8 +90,11 @@ void run_info(const InfoOptions& options) {
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mat = scene.materials[m];
     std::cout << "  " << std::left << std::setw(12) << mat.name << std::right << " reflectance "
-              << triple(mat.reflectance) << "  emission " << triple(mat.emission) << "  "
-              << polygons_per_material[m]
+              << triple(mat.reflectance) << "  emission " << triple(mat.emission) << "  ";
+    // The paper-000 keys only where they are set, so opaque scenes read as before.
+    if (mat.is_filter()) std::cout << "transmittance " << triple(mat.transmittance) << "  ";
+    if (mat.is_mirror()) std::cout << "specular " << triple(mat.specular) << "  ";
+    std::cout << polygons_per_material[m]
               << (polygons_per_material[m] == 1 ? " polygon" : " polygons") << ", area "
               << area_per_material[m] << "\n";
   }

@@ -20,6 +20,9 @@ struct EmittingFace {
   /// edges can be silhouettes; edges inside a polygon are seen only where it is seen.
   std::vector<bool> on_boundary;
   Vec3 normal{0, 0, 1};  ///< The polygon's unit front normal (its plane's).
+  /// Fraction of light passing straight through, from either side (a filter, 000 §2.2): what
+  /// lies behind it along a line of sight reaches x multiplied by it. 0: an opaque occluder.
+  Rgb transmittance = Rgb::Zero();
 };
 
 }  // namespace rad

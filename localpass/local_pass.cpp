@@ -46,6 +46,9 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
       gatherer_(make_exact_gatherer(method, scene, faces_)),
       culling_(scene, faces_, octree_),
       clusters_(faces_) {
+  filter_polygon_.resize(scene.polygons.size());
+  for (size_t i = 0; i < scene.polygons.size(); ++i)
+    filter_polygon_[i] = scene.materials[scene.polygons[i].material].is_filter();
   blocker_pieces_.resize(scene.polygons.size());
   for (EmittingFace& piece :
        faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero())))
@@ -117,8 +120,11 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     Term t{0, c, begin, end, Rgb::Zero(), cluster.bmax * ff};
     // What may be hidden, when queries are at hand: its visible form factor, exactly.
     // (At tolerance 0 a partly hidden cluster is only a way down to its faces: no query.)
-    const bool query =
-        !t.seen_whole() && queries && (cluster.is_leaf() ? faces_by_query : !exact_only);
+    // (Not through a filter: the query takes every blocker as opaque; see the header.)
+    const bool through_filter = std::any_of(pool.begin() + begin, pool.begin() + end,
+                                            [&](int p) { return filter_polygon_[p] != 0; });
+    const bool query = !t.seen_whole() && queries && !through_filter &&
+                       (cluster.is_leaf() ? faces_by_query : !exact_only);
     const double visible = query ? visible_form_factor(cluster, begin, end) : ff;
     const bool known = t.seen_whole() || query;
     if (cluster.is_leaf() && known) {  // exact: B FF(x, visible part of the face)

@@ -28,6 +28,11 @@
 ///    an exact visibility query against its blocking polygons (hemisphere/blocker_surface.h),
 ///    bmin (V - gap term) <= term <= bmax V (the same argument on the visible parts), and the
 ///    term is within babs kmax of bmean sum FF'_A (FF'_A of the visible parts, <= area_A kmax).
+///  - filters (000 §2.2): a face's term is B_A times the integral over A of the kernel times
+///    the product of the transmittances crossed on the way (0 through an opaque polygon), so it
+///    still lies in [0, B_A FF_A] and is exact when nothing lies in its shaft. The visibility
+///    query treats every blocker as opaque, which would make bmax V too low: a cluster with a
+///    filter among its blockers gets no query (its upper end stays bmax FF, its lower end 0).
 ///  - a single face: B FF(x, face) when seen whole (Lambert); B V by the query (hemisphere);
 ///    otherwise [0, B FF] until vertex tracing gathers it exactly, in steps of one session
 ///    with the faces of its blocking polygons that meet its shaft.
@@ -96,6 +101,8 @@ class LocalPass {
   /// (hemisphere/blocker_surface.h) that bound partly hidden clusters.
   std::vector<std::vector<EmittingFace>> blocker_pieces_;
   Tolerance tolerance_;
+  /// Per polygon: 1 for filters, which the opaque visibility queries must not be asked about.
+  std::vector<char> filter_polygon_;
   /// Hemisphere: partly hidden faces are queried too (the query is that method's projection).
   /// Vertex tracing gathers them in steps of its own session.
   bool faces_by_query_;

@@ -50,6 +50,15 @@ std::unique_ptr<ExactGatherer> make_exact_gatherer(Method method, const Scene& s
                                                    std::vector<EmittingFace> faces) {
   switch (method) {
     case Method::hemisphere:
+      // Its visibility is opaque by construction (004 §3: each polygon clips what lies behind
+      // it away); filters need the depth-ordered spans of vertex tracing (000 §2.2).
+      for (const EmittingFace& f : faces) {
+        if (f.transmittance != Rgb::Zero()) {
+          throw Error("hemisphere: " + scene.describe_polygon(f.polygon) +
+                      " is a filter (transmittance > 0), which the hemisphere method does not "
+                      "support; use --method vertex");
+        }
+      }
       return std::make_unique<HemisphereGatherer>(std::move(faces), scene.tolerance());
     case Method::vertex:
       return std::make_unique<VertexTracer>(scene, std::move(faces));

@@ -29,7 +29,8 @@ std::vector<EmittingFace> faces_from_solution(const Scene& scene, const Solution
                   std::to_string(scene.polygons.size()));
     }
     const Polygon& p = scene.polygons[e.polygon];
-    EmittingFace face{e.polygon, e.corners, e.radiosity, {}, p.normal};
+    EmittingFace face{e.polygon, e.corners, e.radiosity,
+                      {},        p.normal,  scene.materials[p.material].transmittance};
     const size_t n = e.corners.size();
     for (size_t k = 0; k < n; ++k) {
       // On the boundary when both ends lie on one polygon edge.

@@ -53,22 +53,24 @@ class Shooter {
     seed_ = settings.seed;
   }
 
-  /// Form factor from a receiver point (on polygon `polygon`) to the patch, times the fraction
-  /// of unblocked shadow rays. `key` selects the jitter stream.
-  double visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
-                             uint64_t key) const {
-    if (polygon == shooter.polygon) return 0;  // a planar polygon cannot see itself
-    if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return 0;
+  /// Form factor from a receiver point (on polygon `polygon`) to the patch, times the mean
+  /// over the shadow rays of what passes along each (0 or 1 through opaque polygons, the
+  /// product of the transmittances through filters, 000 §2.2), per channel. `key` selects the
+  /// jitter stream.
+  Rgb visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
+                          uint64_t key) const {
+    if (polygon == shooter.polygon) return Rgb::Zero();  // a planar polygon cannot see itself
+    if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return Rgb::Zero();
     const double ff = point_polygon_form_factor(x, n, shooter.corners);
-    if (!(ff > 0)) return 0;
+    if (!(ff > 0)) return Rgb::Zero();
     ++pairs_;
     // Nothing between them: every ray would pass, so cast none.
     if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon)) {
       ++unhidden_;
-      return ff;
+      return Rgb::Constant(ff);
     }
     uint64_t state = splitmix64(seed_ ^ splitmix64(key));
-    int visible = 0;
+    Rgb visible = Rgb::Zero();
     for (int a = 0; a < side_; ++a) {
       for (int b = 0; b < side_; ++b) {
         const double u = (a + next_uniform(state)) / side_, v = (b + next_uniform(state)) / side_;
@@ -76,13 +78,13 @@ class Shooter {
         const Vec3 d = y - x;
         const double distance = d.norm();
         if (!(distance > 2 * epsilon_)) {
-          ++visible;
+          visible += Rgb::Ones();
           continue;
         }
         // Stop short of the shooter: a relative margin for grazing rays, whose float hit
         // distance is least precise.
         const double t_max = distance * (1 - 1e-6) - epsilon_;
-        if (!caster_.occluded({x, d / distance}, epsilon_, t_max)) ++visible;
+        visible += caster_.transmittance({x, d / distance}, epsilon_, t_max, epsilon_);
       }
     }
     return ff * visible / (side_ * side_);
@@ -271,6 +273,19 @@ class ProgressiveSolver {
   const Material& material(int polygon) const {
     return scene_.materials[scene_.polygons[polygon].material];
   }
+  /// The part of the light arriving at a polygon's front that stays with it (reflected or
+  /// absorbed): a filter passes the rest on, and it is received where it lands (its shadow
+  /// rays carry the transmittance), so the ledger counts it there.
+  Rgb stays(int polygon) const { return Rgb::Ones() - material(polygon).transmittance; }
+  /// A filter's back neither reflects nor emits (one-sided, DESIGN §3) but absorbs what it does
+  /// not pass on: the ledger asks its elements what reaches their backs too. Opaque polygons'
+  /// backs stay unasked (in a closed scene nothing reaches them; in an open one, what does is
+  /// counted as escaped).
+  bool absorbs_at_back(int polygon) const { return material(polygon).is_filter(); }
+  Rgb back_ff(const Element& el, const Patch& source, uint64_t key) const {
+    return rays_.visible_form_factor(el.centroid, -solution_.patches[el.patch].normal, el.polygon,
+                                     source, key);
+  }
   // A re-gather can leave a patch's unshot radiosity slightly negative (its children hold a
   // little less than their parent did: the patch has over-shot). Negative unshot radiosity is
   // shot like positive, as a correction, so the remaining power is measured in absolute value.
@@ -287,10 +302,14 @@ class ProgressiveSolver {
   void split_into(int e, std::vector<int>& children) {
     split_element(elements(), e);
     const int first = elements()[e].first_child;
-    for (int c = 0; c < 4; ++c) children.push_back(first + c);
+    back_irradiance_.resize(elements().size(), Rgb::Zero());
+    for (int c = 0; c < 4; ++c) {
+      children.push_back(first + c);
+      back_irradiance_[first + c] = back_irradiance_[e];  // inherited, as the front's is
+    }
     ++stats().refined;
   }
-  double visible_ff(const Element& el, const Patch& source, uint64_t key) const {
+  Rgb visible_ff(const Element& el, const Patch& source, uint64_t key) const {
     return rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal, el.polygon,
                                      source, key);
   }
@@ -303,22 +322,32 @@ class ProgressiveSolver {
     const int shot = stats().shots;
 
     // Receive at every leaf's centroid; split where this shot is far from linear.
-    ff_.resize(elements().size());
+    ff_.resize(elements().size(), Rgb::Zero());
+    back_ff_.resize(elements().size(), Rgb::Zero());
+    back_irradiance_.resize(elements().size(), Rgb::Zero());
     receive(leaves_, source, shot);
     if (refinement_enabled()) refine_during_shot(shooter, delta, shot);
 
     // Distribute, serially in element order (deterministic sums).
     Rgb received = Rgb::Zero();
     for (const int e : leaves_) {
-      if (ff_[e] == 0) continue;
+      if (ff_[e] == Rgb::Zero() && back_ff_[e] == Rgb::Zero()) continue;
       Element& el = elements()[e];
       const Rgb rho = material(el.polygon).reflectance;
-      const Rgb irradiance = delta * ff_[e];
+      const Rgb irradiance = delta.cwiseProduct(ff_[e]);
       const Rgb reflected = rho.cwiseProduct(irradiance);
+      const Rgb stay = stays(el.polygon).cwiseProduct(irradiance);
       el.radiosity += reflected;
       el.irradiance += irradiance;
-      received += irradiance * el.area;
-      stats().absorbed += (Rgb::Ones() - rho).cwiseProduct(irradiance) * el.area;
+      received += stay * el.area;
+      stats().absorbed += (stay - reflected) * el.area;
+      if (absorbs_at_back(el.polygon)) {
+        const Rgb back = delta.cwiseProduct(back_ff_[e]);
+        const Rgb absorbed = stays(el.polygon).cwiseProduct(back) * el.area;
+        back_irradiance_[e] += back;
+        received += absorbed;
+        stats().absorbed += absorbed;
+      }
       Patch& owner = patches()[el.patch];
       owner.unshot += reflected * (el.area / owner.area);
     }
@@ -331,6 +360,8 @@ class ProgressiveSolver {
     tbb::parallel_for(size_t(0), which.size(), [&](size_t k) {
       const int e = which[k];
       ff_[e] = visible_ff(elements()[e], source, stream_key(shot, e, StreamKind::centre, 0));
+      if (absorbs_at_back(elements()[e].polygon))
+        back_ff_[e] = back_ff(elements()[e], source, stream_key(shot, e, StreamKind::back, 0));
     });
   }
 
@@ -347,8 +378,8 @@ class ProgressiveSolver {
         const Element& el = elements()[e];
         const Rgb rho = material(el.polygon).reflectance;
         const double scale = rho.maxCoeff() * delta.cwiseAbs().maxCoeff();
-        const double lim =
-            limit((el.radiosity + rho.cwiseProduct(delta) * ff_[e]).cwiseAbs().maxCoeff());
+        const double lim = limit(
+            (el.radiosity + rho.cwiseProduct(delta).cwiseProduct(ff_[e])).cwiseAbs().maxCoeff());
         if (scale <= lim || !splittable(el)) return;
         // Largest possible form factor from this element to the shooter (bounding spheres):
         // skip pairs that cannot reach the limit.
@@ -358,7 +389,7 @@ class ProgressiveSolver {
             gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
         if (scale * ff_max <= lim) return;
         // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
-        double mean = 0;
+        Rgb mean = Rgb::Zero();
         for (size_t c = 0; c < el.corners.size(); ++c) {
           const Vec3 x = el.corners[c] + 1e-3 * (el.centroid - el.corners[c]);
           mean += rays_.visible_form_factor(
@@ -366,14 +397,15 @@ class ProgressiveSolver {
               stream_key(shot, e, StreamKind::corner, static_cast<int>(c)));
         }
         mean /= static_cast<double>(el.corners.size());
-        split[k] = scale * std::abs(ff_[e] - mean) > lim;
+        split[k] = scale * (ff_[e] - mean).cwiseAbs().maxCoeff() > lim;
       });
       std::vector<int> children;
       for (size_t k = 0; k < candidates.size(); ++k) {
         if (split[k]) split_into(candidates[k], children);
       }
       if (children.empty()) break;
-      ff_.resize(elements().size());
+      ff_.resize(elements().size(), Rgb::Zero());
+      back_ff_.resize(elements().size(), Rgb::Zero());
       receive(children, source, shot);
       regather(children);
       candidates = std::move(children);
@@ -389,15 +421,19 @@ class ProgressiveSolver {
   /// ledger: absorbed, the owning patch's unshot radiosity, and escaped.
   void regather(const std::vector<int>& children) {
     const int shot = stats().shots;
-    std::vector<Rgb> gathered(children.size(), Rgb::Zero());
+    std::vector<Rgb> gathered(children.size(), Rgb::Zero()), back(children.size(), Rgb::Zero());
     tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
       const Element& el = elements()[children[k]];
+      const bool at_back = absorbs_at_back(el.polygon);
       for (size_t j = 0; j < solution_.patches.size(); ++j) {
         const Patch& p = solution_.patches[j];
         if (p.shot == Rgb::Zero()) continue;
-        gathered[k] += p.shot * visible_ff(el, p,
-                                           stream_key(shot, children[k], StreamKind::regather,
-                                                      static_cast<int>(j)));
+        gathered[k] += p.shot.cwiseProduct(visible_ff(
+            el, p, stream_key(shot, children[k], StreamKind::regather, static_cast<int>(j))));
+        if (at_back) {
+          back[k] += p.shot.cwiseProduct(back_ff(
+              el, p, stream_key(shot, children[k], StreamKind::back, static_cast<int>(j) + 1)));
+        }
       }
     });
     for (size_t k = 0; k < children.size(); ++k) {
@@ -406,8 +442,15 @@ class ProgressiveSolver {
       const Rgb power = (gathered[k] - el.irradiance) * el.area;  // against what it inherited
       el.irradiance = gathered[k];
       el.radiosity = material(el.polygon).emission + rho.cwiseProduct(gathered[k]);
-      stats().absorbed += (Rgb::Ones() - rho).cwiseProduct(power);
-      stats().escaped -= power;
+      stats().absorbed += (stays(el.polygon) - rho).cwiseProduct(power);
+      stats().escaped -= stays(el.polygon).cwiseProduct(power);
+      if (absorbs_at_back(el.polygon)) {
+        const Rgb back_power =
+            stays(el.polygon).cwiseProduct(back[k] - back_irradiance_[children[k]]) * el.area;
+        back_irradiance_[children[k]] = back[k];
+        stats().absorbed += back_power;
+        stats().escaped -= back_power;
+      }
       Patch& owner = patches()[el.patch];
       owner.unshot += rho.cwiseProduct(power) / owner.area;
     }
@@ -422,7 +465,9 @@ class ProgressiveSolver {
   const Shooter rays_;
   std::vector<Sphere> patch_bounds_;
   std::vector<int> leaves_;
-  std::vector<double> ff_;  ///< This shot's visible form factor per element.
+  std::vector<Rgb> ff_;               ///< This shot's visible form factor per element, per channel.
+  std::vector<Rgb> back_ff_;          ///< The same at the backs of filters' elements...
+  std::vector<Rgb> back_irradiance_;  ///< ...and what has reached those backs so far.
 };
 
 }  // namespace

@@ -10,10 +10,14 @@ namespace rad {
 
 namespace {
 
-/// Shared pixel loop: `shade(hit, index, out)` fills pixel `index` of a front-facing hit.
+/// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
+/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2): each surface
+/// it meets is weighted by the product of the transmittances in front of it, and an opaque one
+/// ends it. Without filters that is the first hit alone, as before.
 template <typename Shade>
-IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera,
+IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, double gap,
                               const std::function<void(size_t)>& progress, const Shade& shade) {
+  const Scene& scene = caster.scene();
   const int width = camera.width(), height = camera.height();
   IrradianceImage out;
   out.radiosity = Image(width, height);
@@ -24,20 +28,31 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera,
   out.clusters.assign(count, 0);
   out.surface.assign(count, 0);
   std::atomic<size_t> done{0};
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
-                    [&](const tbb::blocked_range2d<int>& tile) {
-                      for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
-                        for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
-                          const size_t index = static_cast<size_t>(y) * width + x;
-                          const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
-                          if (!hit || !hit->front_facing) continue;
-                          shade(*hit, index, out);
-                          out.surface[index] = 1;
-                        }
-                      }
-                      const size_t finished = done += tile.rows().size() * tile.cols().size();
-                      if (progress) progress(finished);
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
+      [&](const tbb::blocked_range2d<int>& tile) {
+        for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
+          for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+            const size_t index = static_cast<size_t>(y) * width + x;
+            const Ray ray = camera.ray(x + 0.5, y + 0.5);
+            Rgb weight = Rgb::Ones();
+            for (double t = 0;;) {
+              const auto hit = caster.closest_hit(ray, t);
+              if (!hit) break;
+              if (hit->front_facing) {
+                shade(*hit, weight, index, out);
+                out.surface[index] = 1;
+              }
+              weight = weight.cwiseProduct(
+                  scene.materials[scene.polygons[hit->polygon].material].transmittance);
+              if (weight == Rgb::Zero()) break;
+              t = std::max(hit->distance, t) + gap;  // on, never back
+            }
+          }
+        }
+        const size_t finished = done += tile.rows().size() * tile.cols().size();
+        if (progress) progress(finished);
+      });
   return out;
 }
 
@@ -46,16 +61,20 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera,
 IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
                                   const LocalPass& pass, double tolerance,
                                   const std::function<void(size_t)>& progress) {
+  // Through filters the pixel is sum_k w_k B_k with w_k >= 0 known exactly, so the weighted
+  // sum of the points' certified bounds bounds its error, and each is within the tolerance of
+  // its own B_k, so the sum is within the tolerance of the pixel.
   return render_pixels(
-      caster, camera, progress, [&](const Hit& hit, size_t index, IrradianceImage& out) {
+      caster, camera, scene.tolerance().ray_offset, progress,
+      [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
-        out.radiosity.pixels[index] =
-            material.emission + material.reflectance.cwiseProduct(r.irradiance);
-        out.bound.pixels[index] = material.reflectance.cwiseProduct(r.bound);
-        out.gathered_exactly[index] = r.gathered_exactly;
-        out.projected[index] = r.projected;
-        out.clusters[index] = r.clusters;
+        out.radiosity.pixels[index] += weight.cwiseProduct(
+            material.emission + material.reflectance.cwiseProduct(r.irradiance));
+        out.bound.pixels[index] += weight.cwiseProduct(material.reflectance.cwiseProduct(r.bound));
+        out.gathered_exactly[index] += r.gathered_exactly;
+        out.projected[index] += r.projected;
+        out.clusters[index] += r.clusters;
       });
 }
 
@@ -63,10 +82,12 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const MonteCarloGatherer& gatherer,
                                    int samples, const std::function<void(size_t)>& progress) {
   IrradianceImage image = render_pixels(
-      caster, camera, progress, [&](const Hit& hit, size_t index, IrradianceImage& out) {
+      caster, camera, scene.tolerance().ray_offset, progress,
+      [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const Rgb h = gatherer.gather(hit.point, hit.normal, samples, index);
-        out.radiosity.pixels[index] = material.emission + material.reflectance.cwiseProduct(h);
+        out.radiosity.pixels[index] +=
+            weight.cwiseProduct(material.emission + material.reflectance.cwiseProduct(h));
       });
   image.samples_per_pixel = samples;
   return image;

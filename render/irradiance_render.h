@@ -1,5 +1,6 @@
 #pragma once
-/// Images of B(x) = E(x) + rho(x) H(x) at the primary hit of every pixel, with H from the
+/// Images of B(x) = E(x) + rho(x) H(x) at the primary hit of every pixel (and, through filters,
+/// at the surfaces behind, weighted by what the filters pass: 000 §2.2), with H from the
 /// error-bounded local pass (exact, with a certified bound) or from the Monte Carlo baseline,
 /// and what each pixel cost.
 #include <functional>
@@ -14,10 +15,13 @@
 namespace rad {
 
 struct IrradianceImage {
-  Image radiosity;  ///< B = E + rho H [W/m^2] at front-facing primary hits; 0 elsewhere
-  Image bound;      ///< rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
-  std::vector<int> gathered_exactly;  ///< Per pixel: faces gathered exactly (0 at misses, back
-                                      ///< sides, Monte Carlo)
+  /// B = E + rho H [W/m^2] at front-facing primary hits, 0 elsewhere; through filters, the
+  /// sum of the B of the surfaces along the eye ray, each times the transmittances in front.
+  Image radiosity;
+  Image bound;  ///< Sum of w rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
+  /// Per pixel: faces gathered exactly (0 at misses, back sides, Monte Carlo; summed over the
+  /// surfaces seen through filters, as the next two)
+  std::vector<int> gathered_exactly;
   std::vector<int> projected;  ///< Per pixel: faces projected (hemisphere: with possible occluders)
   std::vector<int> clusters;   ///< Per pixel: cluster intervals computed (localpass/cluster_tree.h)
   std::vector<char> surface;   ///< Per pixel: 1 where a front-facing surface was gathered

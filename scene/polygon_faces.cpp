@@ -47,6 +47,7 @@ std::vector<EmittingFace> faces_from_polygons(const Scene& scene, std::vector<Rg
     if (is_convex(flat)) {
       faces.push_back(
           {polygon, p.vertices, exitance[i], std::vector<bool>(p.vertices.size(), true), p.normal});
+      faces.back().transmittance = scene.materials[p.material].transmittance;
       orient_counter_clockwise(faces.back());
       continue;
     }
@@ -62,6 +63,7 @@ std::vector<EmittingFace> faces_from_polygons(const Scene& scene, std::vector<Rg
         const int a = t[e], b = t[(e + 1) % 3];
         face.on_boundary.push_back((b - a + n) % n == 1 || (a - b + n) % n == 1);
       }
+      face.transmittance = scene.materials[p.material].transmittance;
       orient_counter_clockwise(face);
       faces.push_back(std::move(face));
     }

@@ -30,6 +30,8 @@ struct RayCaster::Impl {
 };
 
 RayCaster::RayCaster(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
+  for (const Polygon& p : scene.polygons)
+    has_filters_ = has_filters_ || scene.materials[p.material].is_filter();
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw Error("cannot create the Embree device");
   rtcSetDeviceErrorFunction(impl_->device, Impl::record_device_error, impl_.get());
@@ -131,6 +133,21 @@ bool RayCaster::occluded(const Ray& ray, double t_min, double t_max) const {
   rtcInitIntersectContext(&context);
   rtcOccluded1(impl_->rtc_scene, &context, &r);
   return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double gap) const {
+  if (!has_filters_) return occluded(ray, t_min, t_max) ? Rgb::Zero() : Rgb::Ones();
+  Rgb passed = Rgb::Ones();
+  for (double t = t_min;;) {
+    const auto hit = closest_hit(ray, t, t_max);
+    if (!hit) return passed;
+    passed =
+        passed.cwiseProduct(scene_.materials[scene_.polygons[hit->polygon].material].transmittance);
+    if (passed == Rgb::Zero()) return passed;
+    // On past it, and never back: the distance recomputed in double can fall short of the
+    // float one Embree found at or beyond t.
+    t = std::max(hit->distance, t) + gap;
+  }
 }
 
 }  // namespace rad

@@ -36,11 +36,20 @@ class RayCaster {
   /// True when any polygon intersects the ray with t in [t_min, t_max].
   bool occluded(const Ray& ray, double t_min, double t_max) const;
 
+  /// What passes along the ray over t in [t_min, t_max], per channel: the product of the
+  /// transmittances of the polygons it crosses (filters, 000 §2.2), 0 at the first opaque one,
+  /// 1 when it crosses none. Without filters in the scene this is one occlusion query. Two
+  /// crossings closer than `gap` are taken as one surface (rays through a shared edge).
+  Rgb transmittance(const Ray& ray, double t_min, double t_max, double gap) const;
+  /// True when some polygon's material is a filter.
+  bool has_filters() const { return has_filters_; }
+
   const Scene& scene() const { return scene_; }
 
  private:
   struct Impl;
   const Scene& scene_;
+  bool has_filters_ = false;
   std::unique_ptr<Impl> impl_;
 };
 

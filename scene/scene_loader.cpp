@@ -153,11 +153,14 @@ class Reader {
 
 Material read_material(const Reader& in, const std::string& name, const Json& j) {
   const std::string where = "materials.\"" + name + "\"";
-  in.require_object(j, where, {"reflectance", "emission"});
+  in.require_object(j, where, {"reflectance", "emission", "transmittance", "specular"});
   Material m;
   m.name = name;
   if (j.contains("reflectance")) m.reflectance = in.rgb(j["reflectance"], where + ".reflectance");
   if (j.contains("emission")) m.emission = in.rgb(j["emission"], where + ".emission");
+  if (j.contains("transmittance"))
+    m.transmittance = in.rgb(j["transmittance"], where + ".transmittance");
+  if (j.contains("specular")) m.specular = in.rgb(j["specular"], where + ".specular");
   for (int c = 0; c < 3; ++c) {
     if (!(m.reflectance[c] >= 0 && m.reflectance[c] < 1)) {
       std::ostringstream msg;
@@ -168,6 +171,25 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
     if (m.emission[c] < 0) {
       std::ostringstream msg;
       msg << "emission[" << c << "] = " << m.emission[c] << " is negative";
+      in.fail(where, msg.str());
+    }
+    for (const auto& [key, value] :
+         {std::pair<const char*, double>{"transmittance", m.transmittance[c]},
+          {"specular", m.specular[c]}}) {
+      if (!(value >= 0 && value <= 1)) {
+        std::ostringstream msg;
+        msg << key << "[" << c << "] = " << value << " is outside [0, 1]";
+        in.fail(where, msg.str());
+      }
+    }
+    // What a filter passes and a mirror reflects come out of the same incident light as the
+    // diffuse part (000 §2.2, §3).
+    const double sum = m.reflectance[c] + m.transmittance[c] + m.specular[c];
+    if (sum > 1) {
+      std::ostringstream msg;
+      msg << "reflectance + transmittance + specular = " << sum << " in channel " << c
+          << " exceeds 1 (a surface cannot send on more than it receives"
+          << (j.contains("reflectance") ? ")" : "; reflectance is 0.5 when omitted)");
       in.fail(where, msg.str());
     }
   }

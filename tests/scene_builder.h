@@ -15,6 +15,12 @@ class SceneBuilder {
     scene_.materials.push_back(Material{name, reflectance, emission});
     return static_cast<int>(scene_.materials.size()) - 1;
   }
+  /// Adds a filter or mirror material (000 §2.2, §3) and returns its index.
+  int material(const std::string& name, const Rgb& reflectance, const Rgb& emission,
+               const Rgb& transmittance, const Rgb& specular = Rgb::Zero()) {
+    scene_.materials.push_back(Material{name, reflectance, emission, transmittance, specular});
+    return static_cast<int>(scene_.materials.size()) - 1;
+  }
   /// Adds a polygon (counter-clockwise from its front) and returns its index.
   int polygon(std::vector<Vec3> vertices, int material) {
     const int object = static_cast<int>(scene_.objects.size());

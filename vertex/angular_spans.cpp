@@ -119,19 +119,42 @@ Rgb angular_span_sum(const Vec3& d, std::span<const SpanEntry> entries, double r
   };
 
   // The emission seen in the sector counter-clockwise after each boundary (up to the next one).
+  bool filters = false;
+  for (const SpanEntry& s : entries) filters = filters || s.transmittance != Rgb::Zero();
   std::vector<Rgb> seen(count, Rgb::Zero());
+  std::vector<int> covering;  // the entries over a sector, front to back
   for (size_t b = 0; b < count; ++b) {
     const double gap = gap_after(b);
     if (!(gap > 0)) continue;  // coincident boundaries: an empty sector, never read
     const double mid = boundaries[b].angle + 0.5 * gap;
     const Vec2 w(std::cos(mid), std::sin(mid));
-    int front = -1;
+    const auto in_front = [&](int i, int j) {
+      return nearer(entries[i], entries[j], d, q, w, radius, circle);
+    };
+    if (!filters) {
+      int front = -1;
+      for (size_t i = 0; i < entries.size(); ++i) {
+        if (!(ccw_angle(start[i], mid) < width[i])) continue;
+        if (front < 0 || in_front(static_cast<int>(i), front)) front = static_cast<int>(i);
+      }
+      if (front >= 0) seen[b] = entries[front].exitance;
+      continue;
+    }
+    // Filters (000 §2.2): everything over the sector in depth order, composed front to back.
+    // Insertion sort: a handful of entries, and it needs no strict weak order from `nearer`.
+    covering.clear();
     for (size_t i = 0; i < entries.size(); ++i) {
       if (!(ccw_angle(start[i], mid) < width[i])) continue;
-      if (front < 0 || nearer(entries[i], entries[front], d, q, w, radius, circle))
-        front = static_cast<int>(i);
+      covering.push_back(static_cast<int>(i));
+      for (size_t k = covering.size() - 1; k > 0 && in_front(covering[k], covering[k - 1]); --k)
+        std::swap(covering[k], covering[k - 1]);
     }
-    if (front >= 0) seen[b] = entries[front].exitance;
+    Rgb passed = Rgb::Ones();  // product of the transmittances in front
+    for (const int i : covering) {
+      seen[b] += passed.cwiseProduct(entries[i].exitance);
+      passed = passed.cwiseProduct(entries[i].transmittance);
+      if (passed == Rgb::Zero()) break;  // an opaque entry ends the line of sight
+    }
   }
 
   // Sum (M_after - M_before) G over groups of coincident boundaries, starting after a sector

@@ -31,6 +31,8 @@ struct SpanEntry {
   double offset = 0;           ///< ...and normal . p on it (never 0: edge-on planes are dropped).
   int order = 0;  ///< Coplanar overlap: the lower order shows (as in hemi::VisibleSurface).
   Rgb exitance = Rgb::Zero();  ///< M: what it radiates towards x (0 when x sees its back).
+  /// What it passes of what lies behind it, from either side (a filter, 000 §2.2); 0: opaque.
+  Rgb transmittance = Rgb::Zero();
 };
 
 /// Distance of image point q from the line of plane k through x, relative to 1 + |q| (so a
@@ -42,6 +44,10 @@ double relative_line_distance(const Vec3& k, const Vec2& q);
 /// changes across that plane, which becomes one more boundary (the projected intersection line
 /// of two touching or interpenetrating polygons). Farther off, the one nearer along d is nearer
 /// in the whole cone.
+///
+/// In each sector the entries covering it are composed front to back (000 §2.2): M = M_1 +
+/// T_1 (M_2 + T_2 (M_3 + ...)), ending at the first opaque one; with no filters that is the
+/// nearest entry's M, as in 001.
 ///
 /// Returns sum over boundaries of (M_after - M_before) G(q, boundary plane): pi times the
 /// vertex's contribution to the irradiance (001 eq. 9). No entries, or full spans alone, give 0.

@@ -153,6 +153,7 @@ void add_faces_in_square(LocalPicture& picture, const LocalFrame& frame,
     // The receiver sees the front when it lies in front of the plane (offset < 0).
     const bool radiates = !emitting || (*emitting)[i];
     lf.exitance = offset < 0 && radiates ? face.exitance : Rgb::Zero();
+    lf.transmittance = face.transmittance;
     const size_t m = loop.size();
     for (size_t j = 0; j < m; ++j) {
       lf.dirs.push_back(loop[j].normalized());

@@ -51,8 +51,9 @@ struct LocalFace {
   Vec3 normal;
   double offset = 0;
   Rgb exitance = Rgb::Zero();
-  std::vector<Vec3> dirs;   ///< Unit vertex directions...
-  std::vector<Vec2> image;  ///< ...and their images q = (d_x, d_y) / d_z.
+  Rgb transmittance = Rgb::Zero();  ///< From either side (000 §2.2); 0: opaque.
+  std::vector<Vec3> dirs;           ///< Unit vertex directions...
+  std::vector<Vec2> image;          ///< ...and their images q = (d_x, d_y) / d_z.
   std::vector<Vec3>
       k;  ///< Edge i (dirs i -> i+1): unit normal of its plane through x (0: degenerate).
   std::vector<char> silhouette;  ///< Edge flag (kCutBySquare).
@@ -67,6 +68,11 @@ struct Feature {
   Vec3 a, b, k;
   Vec2 qa, qb;
   int polygon = -1;  ///< -1 for intersection segments (they may cross anything)
+  /// May make an apparent vertex: a polygon's outline, a cut by the square, an intersection
+  /// segment. A filter's inner edges and those seen through it do cross in the picture, but
+  /// add no vertex: the transmittance is the same on both sides of an inner edge, so the
+  /// composed exitance M_f + T M_b steps along each line alone, and a straight step through a
+  /// point contributes nothing there (001 eq. 9 is linear in M).
   bool silhouette = false;
 };
 
@@ -127,7 +133,8 @@ void add_features(LocalPicture& picture, const LocalFrame& frame,
                   const std::vector<char>* polygon_present, const EmitterCulling& culling);
 
 /// Step 3: every face vertex, and every apparent crossing of a silhouette with a feature of
-/// another polygon (two edges inside polygons cannot both be seen; 001 §4.2).
+/// another polygon (two edges inside opaque polygons cannot both be seen, 001 §4.2; through a
+/// filter they can, but their crossing adds nothing: see Feature::silhouette).
 void add_vertices_and_crossings(LocalPicture& picture);
 
 /// Where segment p -> q crosses the plane k . d = 0 through x (see local_picture.cpp).

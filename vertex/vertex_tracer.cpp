@@ -48,6 +48,7 @@ void classify(const LocalFace& f, const Vec3& d, const Vec2& q, double radius,
   entry.offset = f.offset;
   entry.order = f.face;
   entry.exitance = f.exitance;
+  entry.transmittance = f.transmittance;
 
   int nearest = -1;
   double nearest_distance = radius;

@@ -90,6 +90,26 @@ TEST(SceneLoader, DefaultsAndGreyShorthand) {
   EXPECT_FALSE(scene.camera);
 }
 
+TEST(SceneLoader, ReadsFiltersAndMirrors) {
+  // 000 §2.2, §3: transmittance and specular, RGB or one number, default 0; the three parts
+  // may sum to exactly 1.
+  const Scene scene = parse_scene(R"({"materials": {"m": {},
+        "glass": {"reflectance": 0.1, "transmittance": [0.2, 0.5, 0.9], "emission": 1},
+        "mirror": {"reflectance": [0.05, 0.1, 0], "specular": [0.95, 0.8, 1]}},
+      "objects": [{"material": "m", "polygons": [[[0,0,0],[1,0,0],[0,1,0]]]},
+                  {"material": "glass", "polygons": [[[0,0,1],[1,0,1],[0,1,1]]]},
+                  {"material": "mirror", "polygons": [[[0,0,2],[1,0,2],[0,1,2]]]}]})",
+                                  "inline.json");
+  const auto material = [&](int p) { return scene.materials[scene.polygons[p].material]; };
+  EXPECT_EQ(material(0).transmittance, Rgb::Zero());
+  EXPECT_EQ(material(0).specular, Rgb::Zero());
+  EXPECT_FALSE(material(0).is_filter() || material(0).is_mirror());
+  EXPECT_EQ(material(1).transmittance, Rgb(0.2, 0.5, 0.9));
+  EXPECT_TRUE(material(1).is_filter() && material(1).is_emitter());
+  EXPECT_EQ(material(2).specular, Rgb(0.95, 0.8, 1));
+  EXPECT_TRUE(material(2).is_mirror() && !material(2).is_filter());
+}
+
 TEST(SceneLoader, NonFiniteLiteralsInsideStringsAreLeftAlone) {
   // "NaN" inside a name is text, not a number.
   const Scene scene = parse_scene(R"({"materials": {"m": {}},
