@@ -9,6 +9,7 @@
 #include "geometry/lambert.h"
 #include "hemisphere/blocker_surface.h"
 #include "localpass/cluster_bounds.h"
+#include "localpass/mirror_images.h"
 #include "scene/polygon_faces.h"
 
 namespace rad {
@@ -36,6 +37,15 @@ std::vector<OctreeItem> octree_items(const std::vector<EmittingFace>& faces) {
   return items;
 }
 
+struct LocalPass::Mirror {
+  MirrorPiece first;                ///< The chain's first mirror: x must face it
+  Eigen::AlignedBox3d sources;      ///< What can be seen through it (the culling beam's target)
+  UnfoldedScene unfolded;           ///< The chain unfolded (localpass/mirror_images.h)
+  std::unique_ptr<LocalPass> pass;  ///< Over `unfolded`, which has no mirrors of its own
+};
+
+LocalPass::~LocalPass() = default;
+
 LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
                      const LocalPassSettings& settings)
     : faces_(std::move(faces)),
@@ -53,9 +63,45 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   for (EmittingFace& piece :
        faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero())))
     blocker_pieces_[piece.polygon].push_back(std::move(piece));
+  in_plane_ = tolerance_.in_plane;
+  mirror_culling_ = settings.mirror_culling;
+  const std::vector<MirrorPiece> pieces = mirror_pieces(scene);
+  LocalPassSettings unfolded = settings;
+  unfolded.mirror_depth = 0;  // an unfolded scene has no mirrors (images never reflect)
+  for (const std::vector<int>& chain : mirror_chains(pieces, settings.mirror_depth, in_plane_)) {
+    auto m = std::make_unique<Mirror>();
+    m->first = pieces[chain.front()];
+    m->sources = sources_in_front(faces_, pieces, m->first, in_plane_);
+    m->unfolded = unfold(scene, faces_, pieces, chain, in_plane_);
+    m->pass = std::make_unique<LocalPass>(m->unfolded.scene, m->unfolded.faces, method, unfolded);
+    mirrors_.push_back(std::move(m));
+  }
 }
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
+  LocalPassResult result = gather_direct(x, n, tolerance);
+  for (const std::unique_ptr<Mirror>& m : mirrors_) {
+    if (!(m->first.height(x) > in_plane_)) continue;  // the mirror's back, or edge-on
+    // Culling beams (000 §5): all light of the chain comes through the first outline from
+    // what lies in front of it, radiating or reflecting; if x' sees none of it there, the
+    // chain's term is 0.
+    if (mirror_culling_ && !may_see_through(m->first, m->first.reflect(x), m->sources)) continue;
+    const LocalPassResult r =
+        m->pass->gather(m->unfolded.receiver(x), m->unfolded.receiver_normal(n), tolerance);
+    const Rgb& s = m->unfolded.specular;
+    result.irradiance += s.cwiseProduct(r.irradiance);
+    result.bound += s.cwiseProduct(r.bound);
+    result.gathered_exactly += r.gathered_exactly;
+    result.unoccluded += r.unoccluded;
+    result.projected += r.projected;
+    result.clusters += r.clusters;
+    result.gathers += r.gathers;
+    ++result.mirrored;
+  }
+  return result;
+}
+
+LocalPassResult LocalPass::gather_direct(const Vec3& x, const Vec3& n, double tolerance) const {
   return occlusion_culling_ ? gather_by_clusters(x, n, tolerance) : gather_plainly(x, n);
 }
 

@@ -56,6 +56,15 @@ namespace rad {
 
 struct LocalPassSettings {
   OctreeSettings octree;
+  /// Longest chain of plane-mirror reflections gathered (000 §3): 0 ignores mirrors (their
+  /// diffuse part still radiates), 1 gathers each mirror's reflection, 2 also reflections of
+  /// reflections, ... Each chain of k mirrors is unfolded into a scene of k + 1 copies of the
+  /// faces (localpass/mirror_images.h), and the number of chains grows like
+  /// (mirror pieces facing each other)^depth.
+  int mirror_depth = 2;
+  /// Culling beams (000 §5): skip a mirror at points that cannot see anything radiating
+  /// through it. false: every mirror at every point in front of it (the same values).
+  bool mirror_culling = true;
   /// false: no shaft culling; every face that can light x goes to the gatherer at once with
   /// every face as an occluder (the naive exact gather, the baseline for measuring the culling;
   /// the same values at tolerance 0).
@@ -72,6 +81,7 @@ struct LocalPassResult {
                              ///< vertex tracing: the same, summed over its traces)
   int clusters = 0;          ///< Cluster intervals computed (one Lambert formula each)
   int gathers = 0;           ///< Exact gathers run (0 when nothing can light x)
+  int mirrored = 0;          ///< Gathers at unfolded receivers (000 §3): one per chain not culled
 };
 
 /// The octree's items: one per face, with its polygon's normal and its exitance.
@@ -84,14 +94,22 @@ class LocalPass {
   LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
             const LocalPassSettings& settings = {});
 
+  ~LocalPass();
+
   /// Irradiance at x for unit normal n, to the given relative tolerance (0: exact, every face
-  /// that may be hidden radiating in one gather). Thread-safe.
+  /// that may be hidden radiating in one gather). With mirrors, H(x) = H_direct(x) + sum over
+  /// chains c whose first mirror x faces of specular_c H_c(T_c x), each H_c a local pass of its
+  /// own over c's unfolded scene (localpass/mirror_images.h), at x unfolded with its normal, to
+  /// the same tolerance; the bounds add with the same weights (each is certified for its own
+  /// term), and each term's bound is within the tolerance of its value, so the sum is within
+  /// the tolerance of the total. Thread-safe.
   LocalPassResult gather(const Vec3& x, const Vec3& n, double tolerance) const;
 
   const Octree& octree() const { return octree_; }
   int face_count() const { return static_cast<int>(faces_.size()); }
 
  private:
+  LocalPassResult gather_direct(const Vec3& x, const Vec3& n, double tolerance) const;
   LocalPassResult gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance) const;
   /// No culling: every face that can light x radiates in one gather, every face may hide it.
   LocalPassResult gather_plainly(const Vec3& x, const Vec3& n) const;
@@ -111,6 +129,11 @@ class LocalPass {
   std::unique_ptr<ExactGatherer> gatherer_;
   OcclusionCulling culling_;
   ClusterTree clusters_;
+  /// One chain of mirrors: its unfolded scene and the local pass over it (000 §3).
+  struct Mirror;
+  std::vector<std::unique_ptr<Mirror>> mirrors_;
+  double in_plane_ = 0;
+  bool mirror_culling_ = true;
 };
 
 }  // namespace rad

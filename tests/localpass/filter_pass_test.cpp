@@ -141,15 +141,15 @@ TEST(MonteCarlo, PassesThroughFiltersWithinFourStandardErrors) {
       sum2 += m.cwiseProduct(m);
     }
     const Rgb mean = sum / kSeeds;
-    const Rgb variance = ((sum2 / kSeeds - mean.cwiseProduct(mean)) * kSeeds / (kSeeds - 1))
-                             .cwiseMax(0);
+    const Rgb variance =
+        ((sum2 / kSeeds - mean.cwiseProduct(mean)) * kSeeds / (kSeeds - 1)).cwiseMax(0);
     const Rgb se = (variance / kSeeds).cwiseSqrt();
     const Rgb h = exact.gather(p.x, p.n).irradiance;
     for (int c = 0; c < 3; ++c) {
       ++compared;
       if (std::abs(mean[c] - h[c]) > 4 * se[c] + 1e-9 * h[c] && ++outside <= 3) {
-        ADD_FAILURE() << "at " << p.x.transpose() << " channel " << c << ": Monte Carlo "
-                      << mean[c] << " +- " << se[c] << ", exact " << h[c];
+        ADD_FAILURE() << "at " << p.x.transpose() << " channel " << c << ": Monte Carlo " << mean[c]
+                      << " +- " << se[c] << ", exact " << h[c];
       }
     }
   }

@@ -18,10 +18,10 @@ TEST(FilterRender, APaneBeforeTheBoxTintsEveryPixelByItsTransmittance) {
   const Rgb t(0.25, 0.5, 0.75);
   with_pane.materials.push_back(Material{"pane", Rgb::Zero(), Rgb::Zero(), t});
   std::vector<std::string> warnings;
-  for (Polygon& p : make_polygons({{-100, -100, -100}, {700, -100, -100}, {700, 700, -100},
-                                   {-100, 700, -100}},
-                                  "pane", static_cast<int>(with_pane.materials.size()) - 1,
-                                  static_cast<int>(with_pane.objects.size()), 0, warnings)) {
+  for (Polygon& p :
+       make_polygons({{-100, -100, -100}, {700, -100, -100}, {700, 700, -100}, {-100, 700, -100}},
+                     "pane", static_cast<int>(with_pane.materials.size()) - 1,
+                     static_cast<int>(with_pane.objects.size()), 0, warnings)) {
     with_pane.polygons.push_back(p);
   }
   CameraSpec spec = *s.scene.camera;
@@ -29,13 +29,15 @@ TEST(FilterRender, APaneBeforeTheBoxTintsEveryPixelByItsTransmittance) {
   const Camera camera(spec);
   const LocalPass open(s.scene, s.faces, Method::vertex), paned(with_pane, s.faces, Method::vertex);
   for (const double tolerance : {0.0, 0.1}) {
-    const IrradianceImage a = render_local_pass(s.scene, RayCaster(s.scene), camera, open, tolerance);
+    const IrradianceImage a =
+        render_local_pass(s.scene, RayCaster(s.scene), camera, open, tolerance);
     const IrradianceImage b =
         render_local_pass(with_pane, RayCaster(with_pane), camera, paned, tolerance);
     int lit = 0;
     for (size_t i = 0; i < a.radiosity.pixels.size(); ++i) {
       const Rgb want = t.cwiseProduct(a.radiosity.pixels[i]);
-      EXPECT_LE((b.radiosity.pixels[i] - want).cwiseAbs().maxCoeff(), 1e-12 * want.maxCoeff() + 1e-15)
+      EXPECT_LE((b.radiosity.pixels[i] - want).cwiseAbs().maxCoeff(),
+                1e-12 * want.maxCoeff() + 1e-15)
           << "pixel " << i << " at tolerance " << tolerance;
       const Rgb want_bound = t.cwiseProduct(a.bound.pixels[i]);
       EXPECT_LE((b.bound.pixels[i] - want_bound).cwiseAbs().maxCoeff(),
@@ -46,7 +48,8 @@ TEST(FilterRender, APaneBeforeTheBoxTintsEveryPixelByItsTransmittance) {
   }
   const MonteCarloGatherer mc_open(s.scene, s.faces), mc_paned(with_pane, s.faces);
   const IrradianceImage a = render_monte_carlo(s.scene, RayCaster(s.scene), camera, mc_open, 16);
-  const IrradianceImage b = render_monte_carlo(with_pane, RayCaster(with_pane), camera, mc_paned, 16);
+  const IrradianceImage b =
+      render_monte_carlo(with_pane, RayCaster(with_pane), camera, mc_paned, 16);
   for (size_t i = 0; i < a.radiosity.pixels.size(); ++i) {
     const Rgb want = t.cwiseProduct(a.radiosity.pixels[i]);
     EXPECT_LE((b.radiosity.pixels[i] - want).cwiseAbs().maxCoeff(), 1e-12 * want.maxCoeff() + 1e-15)

@@ -32,9 +32,8 @@ Rgb traced(const Scene& scene, const Vec3& x, const Vec3& n) {
   for (int c = 0; c < 3; ++c) {
     const double tolerance = std::max(relative * std::abs(want[c]), 1e-12);
     if (!(std::abs(got[c] - want[c]) <= tolerance)) {
-      return ::testing::AssertionFailure()
-             << "channel " << c << ": got " << got[c] << " want " << want[c] << " (difference "
-             << got[c] - want[c] << ")";
+      return ::testing::AssertionFailure() << "channel " << c << ": got " << got[c] << " want "
+                                           << want[c] << " (difference " << got[c] - want[c] << ")";
     }
   }
   return ::testing::AssertionSuccess();
@@ -139,8 +138,7 @@ TEST(Filters, WholeLampBehindAFilterIsTransmittanceTimesHowellB3) {
       const int glass = b.material("glass", Rgb::Constant(0.05), Rgb::Zero(), transmittance);
       b.rectangle(0, c.a, 0, c.b, c.c, true, lamp);
       b.rectangle(-1, c.a + 1, -1, c.b + 1, c.c / 2, filter_faces_x, glass);
-      EXPECT_TRUE(agree(traced(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F * transmittance,
-                        1e-12))
+      EXPECT_TRUE(agree(traced(b.scene(), Vec3::Zero(), Vec3::UnitZ()), c.F * transmittance, 1e-12))
           << "B-3 (" << c.a << ", " << c.b << ", " << c.c << "), filter facing x "
           << filter_faces_x;
     }
@@ -198,8 +196,8 @@ TEST(Filters, InTheReceiversPlaneOrEdgeOnTheyChangeNothing) {
   const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
   const int glass = b.material("glass", Rgb::Zero(), Rgb::Zero(), t);
   b.rectangle(0, 2, 0, 3, 1, true, lamp);
-  b.rectangle(0.5, 1.5, 0.5, 1.5, 0, false, glass);     // beside x, in its plane
-  b.rectangle(-0.5, 0.5, -0.5, 0.5, 0, true, glass);    // x on it (its back)
+  b.rectangle(0.5, 1.5, 0.5, 1.5, 0, false, glass);   // beside x, in its plane
+  b.rectangle(-0.5, 0.5, -0.5, 0.5, 0, true, glass);  // x on it (its back)
   b.polygon({{0, -1, 0.2}, {0, 2, 0.2}, {0, 2, 0.9}, {0, -1, 0.9}}, glass);  // edge-on
   EXPECT_TRUE(agree(traced(b.scene(), Vec3::Zero(), Vec3::UnitZ()),
                     Rgb::Constant(test::howell_b3(2, 3, 1)), 1e-12));
@@ -292,8 +290,8 @@ TEST(Filters, ManyFiltersOverALampMatchTheSubsetIdentity) {
     for (int i = 0; i < k; ++i) {
       Vec3 n = maker.unit();
       if (std::abs(n.z()) < 0.3) n.z() = 0.3;
-      const int filter =
-          b.material(numbered("f", static_cast<size_t>(i)), Rgb::Zero(), Rgb::Zero(), random_transmittance(maker));
+      const int filter = b.material(numbered("f", static_cast<size_t>(i)), Rgb::Zero(), Rgb::Zero(),
+                                    random_transmittance(maker));
       b.polygon(maker.polygon(Vec3(maker.uniform(-0.5, 0.5), maker.uniform(-0.5, 0.5),
                                    maker.uniform(0.3, 1.7)),
                               n.normalized(), maker.uniform(0.3, 0.9)),
@@ -327,7 +325,8 @@ TEST(Filters, ConjunctiveFamiliesMatchTheSubsetIdentity) {
         static_cast<test::RandomSceneMaker::Conjunction>(s % test::RandomSceneMaker::kConjunctions);
     test::RandomScene r = maker.conjunctive_scene(kind);
     const std::vector<int> filters = make_filters(r.scene, maker, 8);
-    tally.compare(r.scene, filters, r.sites, numbered("conjunctive family ", static_cast<size_t>(s % 5)));
+    tally.compare(r.scene, filters, r.sites,
+                  numbered("conjunctive family ", static_cast<size_t>(s % 5)));
   }
   EXPECT_EQ(tally.disagreements, 0);
   EXPECT_GT(tally.mattered, 10);
