@@ -71,9 +71,22 @@ void run_probe(const ProbeOptions& o) {
       };
     }
   } else {
-    // Both exact methods see the same faces (the polygons, concave ones as triangles).
-    direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
-    gather = [&](size_t i) { irradiance[i] = exact_irradiance(*direct, points[i].x, points[i].n); };
+    // Both exact methods see the same faces (the polygons, concave ones as triangles). With
+    // mirrors, the local pass at tolerance 0 (it unfolds them: localpass/mirror_images.h).
+    bool mirrors = false;
+    for (const Polygon& p : scene.polygons)
+      mirrors = mirrors || scene.materials[p.material].is_mirror();
+    if (mirrors && scene.mirror_depth > 0) {
+      pass.emplace(scene, faces_from_polygons(scene), method);
+      gather = [&](size_t i) {
+        irradiance[i] = pass->gather(points[i].x, points[i].n, 0).irradiance;
+      };
+    } else {
+      direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
+      gather = [&](size_t i) {
+        irradiance[i] = exact_irradiance(*direct, points[i].x, points[i].n);
+      };
+    }
   }
 
   ProgressBar bar("probe");

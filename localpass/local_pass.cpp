@@ -68,7 +68,8 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   const std::vector<MirrorPiece> pieces = mirror_pieces(scene);
   LocalPassSettings unfolded = settings;
   unfolded.mirror_depth = 0;  // an unfolded scene has no mirrors (images never reflect)
-  for (const std::vector<int>& chain : mirror_chains(pieces, settings.mirror_depth, in_plane_)) {
+  const int depth = settings.mirror_depth.value_or(scene.mirror_depth);
+  for (const std::vector<int>& chain : mirror_chains(pieces, depth, in_plane_)) {
     auto m = std::make_unique<Mirror>();
     m->first = pieces[chain.front()];
     m->sources = sources_in_front(faces_, pieces, m->first, in_plane_);

@@ -41,6 +41,7 @@
 /// the relative error (against the brightest channel) is at most the tolerance. At tolerance 0
 /// every cluster is refined to its faces: every term is exact and the bound is 0.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "geometry/emitting_face.h"
@@ -60,8 +61,8 @@ struct LocalPassSettings {
   /// diffuse part still radiates), 1 gathers each mirror's reflection, 2 also reflections of
   /// reflections, ... Each chain of k mirrors is unfolded into a scene of k + 1 copies of the
   /// faces (localpass/mirror_images.h), and the number of chains grows like
-  /// (mirror pieces facing each other)^depth.
-  int mirror_depth = 2;
+  /// (mirror pieces facing each other)^depth. Unset: the scene's (Scene::mirror_depth).
+  std::optional<int> mirror_depth;
   /// Culling beams (000 §5): skip a mirror at points that cannot see anything radiating
   /// through it. false: every mirror at every point in front of it (the same values).
   bool mirror_culling = true;

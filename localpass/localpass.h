@@ -3,10 +3,12 @@
 /// §1 step 3): at a point, split the faces by shaft culling over the octree into those nothing
 /// can hide and groups that may be hidden (occlusion_culling.h, shaft.h), gather the groups in
 /// order of decreasing bound through an exact gatherer, and stop at the tolerance with a
-/// certified bound (local_pass.h). Also the method names (method.h) and the Monte Carlo
+/// certified bound (local_pass.h); plane mirrors by chains unfolded into scenes of their own
+/// (mirror_images.h, 000 §3, §5). Also the method names (method.h) and the Monte Carlo
 /// baseline (monte_carlo.h).
 ///
 /// May use: octree, hemisphere, vertex, radiosity, scene, geometry.
 #include "localpass/local_pass.h"
 #include "localpass/method.h"
+#include "localpass/mirror_images.h"
 #include "localpass/monte_carlo.h"

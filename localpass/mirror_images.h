@@ -25,26 +25,10 @@
 
 #include "geometry/emitting_face.h"
 #include "geometry/vec.h"
+#include "scene/mirror_pieces.h"
 #include "scene/scene.h"
 
 namespace rad {
-
-/// One convex piece of a mirror polygon, as an aperture.
-struct MirrorPiece {
-  int polygon = -1;           ///< The scene polygon it is part of (in the scene it came from).
-  std::vector<Vec3> outline;  ///< Convex, counter-clockwise about `normal`.
-  Vec3 normal{0, 0, 1};       ///< Unit front normal: the mirror reflects on this side only.
-  double offset = 0;          ///< The plane normal . p = offset.
-  Rgb specular = Rgb::Zero();
-
-  double height(const Vec3& p) const { return normal.dot(p) - offset; }
-  Vec3 reflect(const Vec3& p) const { return p - 2 * height(p) * normal; }
-  Vec3 reflect_direction(const Vec3& d) const { return d - 2 * normal.dot(d) * normal; }
-};
-
-/// The convex pieces of the scene's mirror polygons (material specular > 0; concave ones as
-/// triangles), in polygon order.
-std::vector<MirrorPiece> mirror_pieces(const Scene& scene);
 
 /// A chain's unfolded scene: its polygons are the unfolded faces themselves (one each, convex),
 /// its materials the scene's, their images' (specular 0) and the frame's (black, opaque).
@@ -57,12 +41,6 @@ struct UnfoldedScene {
   Vec3 receiver(const Vec3& x) const { return linear * x + translation; }
   Vec3 receiver_normal(const Vec3& n) const { return linear * n; }
 };
-
-/// The chains of mirror pieces of at most `depth` reflections worth unfolding: no piece after
-/// itself or after a piece in its plane, and each next piece partly in front of the one before
-/// (and that one partly in front of it), in lexicographic order of piece indices.
-std::vector<std::vector<int>> mirror_chains(const std::vector<MirrorPiece>& pieces, int depth,
-                                            double in_plane);
 
 /// Unfolds `faces` (faces of `scene`) along the chain of `pieces`. Faces within `in_plane` of a
 /// plane count as on it: a leg bounded by that plane leaves them out (the mirror covers them,

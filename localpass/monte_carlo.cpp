@@ -10,13 +10,13 @@ namespace rad {
 
 MonteCarloGatherer::MonteCarloGatherer(const Scene& scene, const std::vector<EmittingFace>& faces) {
   faces_scene_.materials = scene.materials;
+  faces_scene_.mirror_depth = scene.mirror_depth;
   for (const EmittingFace& f : faces) {
     const Polygon& parent = scene.polygons[f.polygon];
     Polygon p = parent;
     p.vertices = f.vertices;
     faces_scene_.polygons.push_back(std::move(p));
     exitance_.push_back(f.exitance);
-    transmittance_.push_back(f.transmittance);
   }
   caster_ = std::make_unique<RayCaster>(faces_scene_);
   offset_ = scene.tolerance().ray_offset;
@@ -40,17 +40,10 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
       const double r = std::sqrt(r2);
       const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v +
                      std::sqrt(std::max(0.0, 1 - r2)) * n;
-      Rgb passed = Rgb::Ones();  // what the filters crossed so far let through
-      for (double t_min = 0;;) {
-        const auto hit = caster_->closest_hit({origin, d}, t_min);
-        if (!hit) break;
-        if (hit->front_facing) sum += passed.cwiseProduct(exitance_[hit->polygon]);
-        passed = passed.cwiseProduct(transmittance_[hit->polygon]);
-        if (passed == Rgb::Zero()) break;  // opaque
-        // Past it, and never back: the distance recomputed in double can fall short of the
-        // float one Embree found at or beyond t_min.
-        t_min = std::max(hit->distance, t_min) + offset_;
-      }
+      caster_->follow({origin, d}, faces_scene_.mirror_depth, offset_,
+                      [&](const Hit& hit, const Rgb& weight) {
+                        if (hit.front_facing) sum += weight.cwiseProduct(exitance_[hit.polygon]);
+                      });
     }
   }
   return sum / static_cast<double>(strata * strata);

@@ -3,8 +3,9 @@
 /// from x into the solution; each ray returns the radiosity of the element it hits first (its
 /// front side; a back side or a miss returns 0), and H = the mean of those radiosities (the
 /// cosine-weighted estimator of H = integral of (B / pi) cos theta dw). A ray passes on through
-/// filters (000 §2.2), collecting each one's front radiosity weighted by the transmittance of
-/// those before it, and ends at the first opaque polygon. Seeded per point, so a result does
+/// filters (000 §2.2) and reflects off mirrors (000 §3, to the scene's mirror depth), collecting
+/// each surface's front radiosity weighted by what the filters and mirrors before it passed
+/// on, and ends at the first opaque polygon. Seeded per point, so a result does
 /// not depend on the order or the thread it is computed in.
 #include <cstdint>
 #include <memory>
@@ -29,7 +30,6 @@ class MonteCarloGatherer {
  private:
   Scene faces_scene_;
   std::vector<Rgb> exitance_;
-  std::vector<Rgb> transmittance_;
   std::unique_ptr<RayCaster> caster_;
   double offset_ = 0;  ///< Rays start this far along the normal, off the receiver's own face
 };

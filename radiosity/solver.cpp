@@ -17,6 +17,7 @@
 #include "radiosity/random_stream.h"
 #include "radiosity/shadow_culling.h"
 #include "scene/error.h"
+#include "scene/mirror_pieces.h"
 
 namespace rad {
 namespace {
@@ -41,6 +42,17 @@ Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
   return {centre, r};
 }
 
+/// True when p (in the piece's plane) lies in its outline (convex, counter-clockwise).
+bool in_outline(const MirrorPiece& m, const Vec3& p) {
+  const size_t k = m.outline.size();
+  for (size_t i = 0; i < k; ++i) {
+    const Vec3& a = m.outline[i];
+    const Vec3& b = m.outline[(i + 1) % k];
+    if ((b - a).cross(p - a).dot(m.normal) < 0) return false;
+  }
+  return true;
+}
+
 class Shooter {
  public:
   Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
@@ -51,14 +63,98 @@ class Shooter {
     side_ = std::max(
         1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
     seed_ = settings.seed;
+    const Scene& scene = caster.scene();
+    in_plane_ = scene.tolerance().in_plane;
+    pieces_ = mirror_pieces(scene);
+    chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
   }
 
   /// Form factor from a receiver point (on polygon `polygon`) to the patch, times the mean
   /// over the shadow rays of what passes along each (0 or 1 through opaque polygons, the
-  /// product of the transmittances through filters, 000 §2.2), per channel. `key` selects the
-  /// jitter stream.
+  /// product of the transmittances through filters, 000 §2.2), per channel; plus the same
+  /// from the patch's images in every chain of mirrors (000 §3: the image method), times the
+  /// chain's specular reflectance. `key` selects the jitter stream.
   Rgb visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                           uint64_t key) const {
+    Rgb ff = direct_form_factor(x, n, polygon, shooter, key);
+    for (size_t c = 0; c < chains_.size(); ++c)
+      ff += image_form_factor(x, n, shooter, chains_[c], splitmix64(key ^ (c + 1)));
+    return ff;
+  }
+
+  /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
+  std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
+
+ private:
+  /// The image of the shooter seen from x along the chain m_1 .. m_k (x -> m_1 -> ... -> m_k
+  /// -> shooter): y^ = R_1 ... R_k y. A sample ray runs from x to y^, must cross each m_j's
+  /// plane inside its outline in turn (reflected at each), and passes the blockers of every
+  /// leg (x -> p_1, p_1 -> p_2, ..., p_k -> y) with their transmittances.
+  Rgb image_form_factor(const Vec3& x, const Vec3& n, const Patch& shooter,
+                        const std::vector<int>& chain, uint64_t key) const {
+    const MirrorPiece& first = pieces_[chain.front()];
+    const MirrorPiece& last = pieces_[chain.back()];
+    if (!(first.height(x) > in_plane_)) return Rgb::Zero();  // x must face the first mirror
+    bool in_front = false;                                   // and the shooter the last
+    for (const Vec3& c : shooter.corners) in_front = in_front || last.height(c) > in_plane_;
+    if (!in_front) return Rgb::Zero();
+    const auto image_of = [&](Vec3 y) {
+      for (auto j = chain.rbegin(); j != chain.rend(); ++j) y = pieces_[*j].reflect(y);
+      return y;
+    };
+    std::vector<Vec3> corners;
+    for (const Vec3& c : shooter.corners) corners.push_back(image_of(c));
+    Vec3 normal = shooter.normal;
+    for (auto j = chain.rbegin(); j != chain.rend(); ++j)
+      normal = pieces_[*j].reflect_direction(normal);
+    if (chain.size() % 2 == 1) std::reverse(corners.begin(), corners.end());
+    if (!is_in_front_of(x, corners[0], normal)) return Rgb::Zero();
+    const double ff = point_polygon_form_factor(x, n, corners);
+    if (!(ff > 0)) return Rgb::Zero();
+    Rgb specular = Rgb::Ones();
+    for (const int j : chain) specular = specular.cwiseProduct(pieces_[j].specular);
+    uint64_t state = splitmix64(seed_ ^ splitmix64(key));
+    Rgb visible = Rgb::Zero();
+    for (int a = 0; a < side_; ++a) {
+      for (int b = 0; b < side_; ++b) {
+        const double u = (a + next_uniform(state)) / side_, v = (b + next_uniform(state)) / side_;
+        const Vec3 y = patch_point(shooter, u, v);
+        Vec3 from = x, target = image_of(y);
+        Rgb passed = Rgb::Ones();
+        for (const int j : chain) {
+          const MirrorPiece& m = pieces_[j];
+          const double hf = m.height(from), ht = m.height(target);
+          if (!(hf > 0 && ht < 0)) {
+            passed = Rgb::Zero();
+            break;
+          }
+          const Vec3 p = from + (hf / (hf - ht)) * (target - from);
+          if (!in_outline(m, p)) {
+            passed = Rgb::Zero();
+            break;
+          }
+          passed = passed.cwiseProduct(leg(from, p));
+          from = p;
+          target = m.reflect(target);
+        }
+        if (passed != Rgb::Zero()) passed = passed.cwiseProduct(leg(from, y));
+        visible += passed;
+      }
+    }
+    return specular.cwiseProduct(ff * visible / (side_ * side_));
+  }
+
+  /// What passes between two points (not counting surfaces within epsilon of either end).
+  Rgb leg(const Vec3& a, const Vec3& b) const {
+    const Vec3 d = b - a;
+    const double distance = d.norm();
+    if (!(distance > 2 * epsilon_)) return Rgb::Ones();
+    return caster_.transmittance({a, d / distance}, epsilon_, distance * (1 - 1e-6) - epsilon_,
+                                 epsilon_);
+  }
+
+  Rgb direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
+                         uint64_t key) const {
     if (polygon == shooter.polygon) return Rgb::Zero();  // a planar polygon cannot see itself
     if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return Rgb::Zero();
     const double ff = point_polygon_form_factor(x, n, shooter.corners);
@@ -90,10 +186,6 @@ class Shooter {
     return ff * visible / (side_ * side_);
   }
 
-  /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
-  std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
-
- private:
   const RayCaster& caster_;
   ShadowCulling culling_;
   double epsilon_;
@@ -101,6 +193,9 @@ class Shooter {
   mutable std::atomic<long long> pairs_{0}, unhidden_{0};
   int side_ = 4;
   uint64_t seed_ = 1;
+  double in_plane_ = 0;
+  std::vector<MirrorPiece> pieces_;
+  std::vector<std::vector<int>> chains_;  ///< Of at most Scene::mirror_depth reflections
 };
 
 void validate(const SolverSettings& s) {
@@ -274,9 +369,14 @@ class ProgressiveSolver {
     return scene_.materials[scene_.polygons[polygon].material];
   }
   /// The part of the light arriving at a polygon's front that stays with it (reflected or
-  /// absorbed): a filter passes the rest on, and it is received where it lands (its shadow
-  /// rays carry the transmittance), so the ledger counts it there.
-  Rgb stays(int polygon) const { return Rgb::Ones() - material(polygon).transmittance; }
+  /// absorbed): a filter passes the rest on, and a mirror reflects it specularly; it is
+  /// received where it lands (shadow rays carry the transmittance, mirror images the specular
+  /// reflectance), so the ledger counts it there.
+  Rgb stays(int polygon) const {
+    const Material& m = material(polygon);
+    // (A mirror's specular part goes on too: its images deliver it.)
+    return Rgb::Ones() - m.transmittance - (scene_.mirror_depth > 0 ? m.specular : Rgb::Zero());
+  }
   /// A filter's back neither reflects nor emits (one-sided, DESIGN §3) but absorbs what it does
   /// not pass on: the ledger asks its elements what reaches their backs too. Opaque polygons'
   /// backs stay unasked (in a closed scene nothing reaches them; in an open one, what does is

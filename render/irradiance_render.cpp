@@ -11,9 +11,10 @@ namespace rad {
 namespace {
 
 /// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
-/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2): each surface
-/// it meets is weighted by the product of the transmittances in front of it, and an opaque one
-/// ends it. Without filters that is the first hit alone, as before.
+/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and reflects
+/// off mirrors (000 §3, to the scene's mirror depth; RayCaster::follow): each surface it meets
+/// is weighted by what the filters and mirrors before it pass on, and an opaque one ends it.
+/// Without filters and mirrors that is the first hit alone, as before.
 template <typename Shade>
 IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, double gap,
                               const std::function<void(size_t)>& progress, const Shade& shade) {
@@ -28,31 +29,22 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
   out.clusters.assign(count, 0);
   out.surface.assign(count, 0);
   std::atomic<size_t> done{0};
-  tbb::parallel_for(
-      tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
-      [&](const tbb::blocked_range2d<int>& tile) {
-        for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
-          for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
-            const size_t index = static_cast<size_t>(y) * width + x;
-            const Ray ray = camera.ray(x + 0.5, y + 0.5);
-            Rgb weight = Rgb::Ones();
-            for (double t = 0;;) {
-              const auto hit = caster.closest_hit(ray, t);
-              if (!hit) break;
-              if (hit->front_facing) {
-                shade(*hit, weight, index, out);
-                out.surface[index] = 1;
-              }
-              weight = weight.cwiseProduct(
-                  scene.materials[scene.polygons[hit->polygon].material].transmittance);
-              if (weight == Rgb::Zero()) break;
-              t = std::max(hit->distance, t) + gap;  // on, never back
-            }
-          }
-        }
-        const size_t finished = done += tile.rows().size() * tile.cols().size();
-        if (progress) progress(finished);
-      });
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
+                    [&](const tbb::blocked_range2d<int>& tile) {
+                      for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
+                        for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+                          const size_t index = static_cast<size_t>(y) * width + x;
+                          caster.follow(camera.ray(x + 0.5, y + 0.5), scene.mirror_depth, gap,
+                                        [&](const Hit& hit, const Rgb& weight) {
+                                          if (!hit.front_facing) return;
+                                          shade(hit, weight, index, out);
+                                          out.surface[index] = 1;
+                                        });
+                        }
+                      }
+                      const size_t finished = done += tile.rows().size() * tile.cols().size();
+                      if (progress) progress(finished);
+                    });
   return out;
 }
 

@@ -150,4 +150,33 @@ Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double 
   }
 }
 
+void RayCaster::follow(const Ray& ray, int mirror_depth, double gap,
+                       const std::function<void(const Hit&, const Rgb&)>& visit) const {
+  struct Branch {
+    Ray ray;
+    Rgb weight;
+    double t_min;
+    int reflections;
+  };
+  std::vector<Branch> branches{{ray, Rgb::Ones(), 0.0, 0}};
+  while (!branches.empty()) {
+    Branch b = branches.back();
+    branches.pop_back();
+    while (true) {
+      const auto hit = closest_hit(b.ray, b.t_min);
+      if (!hit) break;
+      visit(*hit, b.weight);
+      const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
+      if (hit->front_facing && m.is_mirror() && b.reflections < mirror_depth) {
+        const Vec3 d = b.ray.direction - 2 * hit->normal.dot(b.ray.direction) * hit->normal;
+        branches.push_back(
+            {{hit->point, d}, b.weight.cwiseProduct(m.specular), gap, b.reflections + 1});
+      }
+      b.weight = b.weight.cwiseProduct(m.transmittance);
+      if (b.weight == Rgb::Zero()) break;
+      b.t_min = std::max(hit->distance, b.t_min) + gap;  // on past it, never back
+    }
+  }
+}
+
 }  // namespace rad

@@ -2,6 +2,7 @@
 /// Closest-hit and occlusion queries against a scene's polygons. Embree does the traversal in
 /// single precision; the reported distance and point are recomputed in double against the hit
 /// polygon's plane. Embree's headers stay inside ray_caster.cpp.
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -43,6 +44,15 @@ class RayCaster {
   Rgb transmittance(const Ray& ray, double t_min, double t_max, double gap) const;
   /// True when some polygon's material is a filter.
   bool has_filters() const { return has_filters_; }
+
+  /// Follows a ray through filters (on, times the transmittance: 000 §2.2) and off the fronts
+  /// of mirrors (reflected, times the specular reflectance, at most `mirror_depth` times along
+  /// a path: 000 §3), calling visit(hit, weight) for each surface met, weight the product of
+  /// what the filters and mirrors before it passed on. Ends at opaque surfaces and misses.
+  /// Hits closer than `gap` to the previous one are the same surface. Without filters and
+  /// mirrors: the first hit alone, with weight 1.
+  void follow(const Ray& ray, int mirror_depth, double gap,
+              const std::function<void(const Hit&, const Rgb&)>& visit) const;
 
   const Scene& scene() const { return scene_; }
 

@@ -55,7 +55,12 @@ std::string Scene::fingerprint() const {
     const Material& m = materials[p.material];
     add(m.reflectance.data(), 3 * sizeof(double));
     add(m.emission.data(), 3 * sizeof(double));
+    // Filters and mirrors change the solution too; opaque diffuse scenes keep the fingerprint
+    // they had before these keys existed.
+    if (m.is_filter()) add(m.transmittance.data(), 3 * sizeof(double));
+    if (m.is_mirror()) add(m.specular.data(), 3 * sizeof(double));
   }
+  if (mirror_depth != kDefaultMirrorDepth) add(&mirror_depth, sizeof(mirror_depth));
   char text[17];
   std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
   return text;

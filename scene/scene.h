@@ -2,7 +2,8 @@
 /// Module `scene` (rad_scene): the scene model (materials, planar polygons, an optional camera,
 /// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes,
 /// mesh_reader.h) and their validation, the camera, ray casting (Embree behind ray_caster.h),
-/// and the polygons as gatherer faces (polygon_faces.h).
+/// the polygons as gatherer faces (polygon_faces.h), and the mirror pieces and their chains
+/// (mirror_pieces.h).
 ///
 /// May use: geometry, Embree (in .cpp files only), nlohmann-json.
 #include <filesystem>
@@ -43,6 +44,10 @@ struct Scene {
   std::vector<SceneObject> objects;
   std::vector<Polygon> polygons;
   std::optional<CameraSpec> camera;
+  /// Longest chain of plane-mirror reflections the solver, the local pass and the eye follow
+  /// (000 §3; "mirror_depth" in the file, 0 to 8).
+  static constexpr int kDefaultMirrorDepth = 2;
+  int mirror_depth = kDefaultMirrorDepth;
   std::vector<std::string> warnings;  ///< Things loading fixed or noticed, one line each.
 
   /// "objects[2] \"tall block\" polygon 5" (plus " triangle 1" for a split polygon).

@@ -277,7 +277,15 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
 
   Scene scene;
   scene.path = file;
-  in.require_object(root, "top level", {"materials", "objects", "camera"});
+  in.require_object(root, "top level", {"materials", "objects", "camera", "mirror_depth"});
+  if (root.contains("mirror_depth")) {
+    const Json& depth = root["mirror_depth"];
+    if (!depth.is_number_integer() || depth.get<long long>() < 0 || depth.get<long long>() > 8) {
+      in.fail("mirror_depth",
+              "expected an integer from 0 to 8 (reflections followed), got " + depth.dump());
+    }
+    scene.mirror_depth = depth.get<int>();
+  }
 
   // Materials
   std::map<std::string, int> material_index;

@@ -24,6 +24,7 @@ inline const std::vector<BadSceneCase>& bad_scene_cases() {
       {"negative_specular.json", "materials.\"mirror\"", "specular[0] = -0.1 is outside [0, 1]"},
       {"specular_and_reflectance.json", "materials.\"mirror\"",
        "reflectance + transmittance + specular = 1.1 in channel 0 exceeds 1"},
+      {"negative_mirror_depth.json", "mirror_depth", "expected an integer from 0 to 8"},
       {"transmittance_with_default_reflectance.json", "materials.\"glass\"",
        "reflectance is 0.5 when omitted"},
       {"nan_coordinate.json", "objects[0] polygon 1 vertex 2[0]", "not a finite number (NaN)"},

@@ -3,18 +3,18 @@
 // code at the real receiver, and the same values with and without the culling beams (000 §5).
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include <array>
+#include <random>
 
 #include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/local_pass.h"
 #include "localpass/mirror_images.h"
+#include "localpass/monte_carlo.h"
 #include "scene/polygon_faces.h"
 #include "scene/polygon_validation.h"
-#include "vertex/vertex_tracer.h"
 #include "tests/closed_forms.h"
 #include "tests/scene_builder.h"
+#include "vertex/vertex_tracer.h"
 
 namespace rad {
 namespace {
@@ -29,8 +29,7 @@ constexpr Method kExact[] = {Method::hemisphere, Method::vertex};
     const double tolerance = std::max(relative * std::abs(want[c]), 1e-12);
     if (!(std::abs(got[c] - want[c]) <= tolerance)) {
       return ::testing::AssertionFailure() << "channel " << c << ": got " << got[c] << " want "
-                                           << want[c] << " (difference " << got[c] - want[c]
-                                           << ")";
+                                           << want[c] << " (difference " << got[c] - want[c] << ")";
     }
   }
   return ::testing::AssertionSuccess();
@@ -73,8 +72,8 @@ TEST(Mirror, WallMirrorBesideACeilingLampIsSpecularTimesHowell) {
         << method_name(method);
     EXPECT_EQ(r.mirrored, 1) << method_name(method);
     // Without mirrors: the lamp alone.
-    EXPECT_TRUE(agree(direct(b.scene(), method, Vec3::Zero(), Vec3::UnitZ(), 0).irradiance,
-                      e * f_direct));
+    EXPECT_TRUE(
+        agree(direct(b.scene(), method, Vec3::Zero(), Vec3::UnitZ(), 0).irradiance, e * f_direct));
   }
 }
 
@@ -84,8 +83,7 @@ TEST(Mirror, WallMirrorBesideACeilingLampIsSpecularTimesHowell) {
 Scene cube(const std::vector<int>& mirrors, double s) {
   SceneBuilder b;
   const int diffuse = b.material("furnace", Rgb::Constant(0.5), Rgb::Constant(2));
-  const int mirror =
-      b.material("mirror", Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Constant(s));
+  const int mirror = b.material("mirror", Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Constant(s));
   const auto m = [&](int face) {
     return std::find(mirrors.begin(), mirrors.end(), face) != mirrors.end() ? mirror : diffuse;
   };
@@ -167,8 +165,8 @@ Scene mirror_room(const Rgb& specular) {
   const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
   b.rectangle(-3, 1.5, -3, 3, 0, false, grey);
   b.rectangle(-1, 1.9, -0.5, 0.8, 3, true, b.material("lamp", Rgb::Zero(), Rgb(1, 2, 3)));
-  b.rectangle(1.2, 1.8, -0.3, 0.4, 2, false, grey);       // on the second leg
-  wall_x(b, 1.7, -1, 0.2, 0.2, 1.2, true, grey);            // on the first leg
+  b.rectangle(1.2, 1.8, -0.3, 0.4, 2, false, grey);  // on the second leg
+  wall_x(b, 1.7, -1, 0.2, 0.2, 1.2, true, grey);     // on the first leg
   wall_x(b, 2, -2, 2, 0, 2.5, true,
          b.material("mirror", Rgb::Constant(0.05), Rgb::Zero(), Rgb::Zero(), specular));
   return b.scene();
@@ -241,8 +239,8 @@ TEST(Mirror, EqualsTheHandBuiltUnfoldedSceneGatheredAtTheRealReceiver) {
     const Rgb unblocked = direct(clear, Method::vertex, x, Vec3::UnitZ()).irradiance;
     const Rgb no_mirror = direct(clear, Method::vertex, x, Vec3::UnitZ(), 0).irradiance;
     const Rgb blocked_direct = direct(room, Method::vertex, x, Vec3::UnitZ(), 0).irradiance;
-    shadowed += (unblocked - no_mirror).x() - (expected - blocked_direct).x() >
-                1e-6 * unblocked.x();
+    shadowed +=
+        (unblocked - no_mirror).x() - (expected - blocked_direct).x() > 1e-6 * unblocked.x();
   }
   EXPECT_GT(shadowed, 5);
 }
@@ -291,6 +289,37 @@ TEST(Mirror, DegenerateReceiversAndMirrors) {
     EXPECT_TRUE(agree(direct(room, method, corner, Vec3::UnitZ()).irradiance,
                       hand_unfolded_irradiance(room, s, corner)));
   }
+}
+
+TEST(Mirror, MonteCarloRaysOffTheMirrorAgreeWithinFourStandardErrors) {
+  // The baseline's rays reflect off the mirror (sampled, not unfolded): 8 seeds of 4096 rays
+  // at each point against the exact value.
+  const Scene room = mirror_room(Rgb(0.9, 0.6, 0.3));
+  const MonteCarloGatherer mc(room, faces_from_polygons(room));
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> ux(-2.9, 1.45), uy(-2.9, 2.9);
+  int outside = 0;
+  for (int i = 0; i < 20; ++i) {
+    const Vec3 x(ux(rng), uy(rng), 0);
+    const Rgb h = direct(room, Method::vertex, x, Vec3::UnitZ()).irradiance;
+    constexpr int kSeeds = 8;
+    Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+    for (int k = 0; k < kSeeds; ++k) {
+      const Rgb m = mc.gather(x, Vec3::UnitZ(), 4096, 100 * i + k);
+      sum += m;
+      sum2 += m.cwiseProduct(m);
+    }
+    const Rgb mean = sum / kSeeds;
+    const Rgb se =
+        ((sum2 / kSeeds - mean.cwiseProduct(mean)).cwiseMax(0) / (kSeeds - 1)).cwiseSqrt();
+    for (int c = 0; c < 3; ++c) {
+      if (std::abs(mean[c] - h[c]) > 4 * se[c] + 1e-9 * h[c] && ++outside <= 3) {
+        ADD_FAILURE() << "at " << x.transpose() << " channel " << c << ": Monte Carlo " << mean[c]
+                      << " +- " << se[c] << ", exact " << h[c];
+      }
+    }
+  }
+  EXPECT_EQ(outside, 0);
 }
 
 }  // namespace
