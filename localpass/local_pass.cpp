@@ -80,15 +80,23 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
 }
 
 LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance) const {
-  LocalPassResult result = gather_direct(x, n, tolerance);
+  // The chains x reflects: it faces their first mirror, and (culling beams, 000 §5) x' sees
+  // something through it that radiates or reflects: all light of a chain comes through its
+  // first outline from what lies in front of it, so where x' sees none of that, the term is 0.
+  std::vector<const Mirror*> active;
   for (const std::unique_ptr<Mirror>& m : mirrors_) {
     if (!(m->first.height(x) > in_plane_)) continue;  // the mirror's back, or edge-on
-    // Culling beams (000 §5): all light of the chain comes through the first outline from
-    // what lies in front of it, radiating or reflecting; if x' sees none of it there, the
-    // chain's term is 0.
     if (mirror_culling_ && !may_see_through(m->first, m->first.reflect(x), m->sources)) continue;
+    active.push_back(m.get());
+  }
+  // H is a sum of 1 + #active non-negative terms, each gathered to tolerance T / (1 + #active)
+  // of its own brightest channel: the sum of the bounds is then at most T times the largest
+  // of those, which is at most the brightest channel of H.
+  const double share = tolerance / static_cast<double>(1 + active.size());
+  LocalPassResult result = gather_direct(x, n, share);
+  for (const Mirror* m : active) {
     const LocalPassResult r =
-        m->pass->gather(m->unfolded.receiver(x), m->unfolded.receiver_normal(n), tolerance);
+        m->pass->gather(m->unfolded.receiver(x), m->unfolded.receiver_normal(n), share);
     const Rgb& s = m->unfolded.specular;
     result.irradiance += s.cwiseProduct(r.irradiance);
     result.bound += s.cwiseProduct(r.bound);

@@ -100,10 +100,10 @@ class LocalPass {
   /// Irradiance at x for unit normal n, to the given relative tolerance (0: exact, every face
   /// that may be hidden radiating in one gather). With mirrors, H(x) = H_direct(x) + sum over
   /// chains c whose first mirror x faces of specular_c H_c(T_c x), each H_c a local pass of its
-  /// own over c's unfolded scene (localpass/mirror_images.h), at x unfolded with its normal, to
-  /// the same tolerance; the bounds add with the same weights (each is certified for its own
-  /// term), and each term's bound is within the tolerance of its value, so the sum is within
-  /// the tolerance of the total. Thread-safe.
+  /// own over c's unfolded scene (localpass/mirror_images.h), at x unfolded with its normal;
+  /// the bounds add with the same weights (each is certified for its own term). With n terms
+  /// at x, each is gathered to tolerance / n, so the total still meets the stopping rule.
+  /// Thread-safe.
   LocalPassResult gather(const Vec3& x, const Vec3& n, double tolerance) const;
 
   const Octree& octree() const { return octree_; }

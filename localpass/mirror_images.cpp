@@ -148,21 +148,55 @@ UnfoldedScene unfold(const Scene& scene, const std::vector<EmittingFace>& faces,
   }
   out.linear = linear[1];
   out.translation = translation[1];
+  // A convex polygon clipped to a leg is one convex polygon of the unfolded scene, holding the
+  // clipped faces it holds (the local pass culls and clusters by polygon, so a polygon per face
+  // would cost it the square of the faces); a concave one is split into a polygon per face
+  // (its clip need not be simple).
+  std::vector<char> convex(scene.polygons.size(), 0);
+  {
+    std::vector<int> pieces_of(scene.polygons.size(), 0);
+    for (const EmittingFace& f : faces_from_polygons(scene)) ++pieces_of[f.polygon];
+    for (size_t p = 0; p < convex.size(); ++p) convex[p] = pieces_of[p] == 1;
+  }
   for (int j = k + 1; j >= 1; --j) {
     std::vector<const MirrorPiece*> planes;
     if (j >= 2) planes.push_back(&pieces[chain[j - 2]]);
     if (j <= k) planes.push_back(&pieces[chain[j - 1]]);
+    const bool last = j == k + 1;
+    // The leg's copy of a face: clipped, mapped (black) on the earlier legs.
+    const auto leg_copy = [&](const EmittingFace& clipped) {
+      if (last) return clipped;
+      EmittingFace image = mapped(clipped, linear[j], translation[j]);
+      image.exitance = Rgb::Zero();
+      return image;
+    };
+    std::vector<int> unfolded_polygon(scene.polygons.size(), -1);  // -1: not yet, -2: per face
     for (const EmittingFace& f : faces) {
       const std::optional<EmittingFace> clipped = clipped_in_front(f, planes, in_plane);
       if (!clipped) continue;
       const Polygon& provenance = scene.polygons[f.polygon];
-      if (j == k + 1) {
-        add(*clipped, provenance.material, provenance);
+      const int material = provenance.material + (last ? 0 : count);
+      int& target = unfolded_polygon[f.polygon];
+      if (target == -1) {
+        target = -2;
+        if (convex[f.polygon]) {
+          EmittingFace outline;
+          outline.vertices = provenance.vertices;
+          outline.on_boundary.assign(provenance.vertices.size(), true);
+          outline.normal = provenance.normal;
+          if (const auto whole = clipped_in_front(outline, planes, in_plane)) {
+            target = static_cast<int>(out.scene.polygons.size());
+            out.scene.polygons.push_back(polygon_of(leg_copy(*whole), material, provenance));
+          }
+        }
+      }
+      if (target == -2) {
+        add(leg_copy(*clipped), material, provenance);
         continue;
       }
-      EmittingFace image = mapped(*clipped, linear[j], translation[j]);
-      image.exitance = Rgb::Zero();
-      add(std::move(image), provenance.material + count, provenance);
+      EmittingFace face = leg_copy(*clipped);
+      face.polygon = target;
+      out.faces.push_back(std::move(face));
     }
   }
 

@@ -53,9 +53,10 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
 IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
                                   const LocalPass& pass, double tolerance,
                                   const std::function<void(size_t)>& progress) {
-  // Through filters the pixel is sum_k w_k B_k with w_k >= 0 known exactly, so the weighted
-  // sum of the points' certified bounds bounds its error, and each is within the tolerance of
-  // its own B_k, so the sum is within the tolerance of the pixel.
+  // Through filters and mirrors the pixel is sum_k w_k B_k with w_k >= 0 known exactly, so the
+  // weighted sum of the points' certified bounds bounds its error. (The tolerance applies to
+  // each point's H, as without them: a pixel's bound relative to its B can exceed it where rho
+  // or the weights differ between channels.)
   return render_pixels(
       caster, camera, scene.tolerance().ray_offset, progress,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {

@@ -10,6 +10,9 @@
 #include "localpass/local_pass.h"
 #include "localpass/mirror_images.h"
 #include "localpass/monte_carlo.h"
+#include "radiosity/solution_faces.h"
+#include "radiosity/solver.h"
+#include "scene/ray_caster.h"
 #include "scene/polygon_faces.h"
 #include "scene/polygon_validation.h"
 #include "tests/closed_forms.h"
@@ -320,6 +323,61 @@ TEST(Mirror, MonteCarloRaysOffTheMirrorAgreeWithinFourStandardErrors) {
     }
   }
   EXPECT_EQ(outside, 0);
+}
+
+TEST(Mirror, CertifiedBoundHoldsThroughMirrorsAndFiltersWithZeroViolations) {
+  // The mirror room (and, for vertex tracing, a filter pane under the lamp), solved coarsely:
+  // |value(T) - value(0)| <= bound(T) at every point and tolerance, and the stopping rule holds
+  // for the sum of the direct and the mirrored terms.
+  for (const bool with_pane : {false, true}) {
+    Scene scene = mirror_room(Rgb(0.9, 0.8, 0.7));
+    if (with_pane) {
+      SceneBuilder b;
+      b.scene() = scene;
+      b.rectangle(-0.5, 1.0, -1, 1, 2.5, true,
+                  b.material("pane", Rgb::Constant(0.1), Rgb::Zero(), Rgb(0.2, 0.5, 0.8)));
+      scene = b.scene();
+    }
+    SolverSettings settings;
+    settings.patch_size = 0.2;
+    settings.refine_passes = 1;
+    settings.unshot_fraction = 1e-2;
+    const std::vector<EmittingFace> faces =
+        faces_from_solution(scene, solve(RayCaster(scene), settings));
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> ux(-2.9, 1.45), uy(-2.9, 2.9);
+    std::vector<Vec3> points;
+    for (int i = 0; i < 40; ++i) points.push_back(Vec3(ux(rng), uy(rng), 0));
+    for (const Method method : kExact) {
+      if (with_pane && method == Method::hemisphere) continue;  // it refuses filters
+      const LocalPass pass(scene, faces, method);
+      std::vector<Rgb> exact;
+      int mirrored = 0;
+      for (const Vec3& x : points) {
+        const LocalPassResult r = pass.gather(x, Vec3::UnitZ(), 0);
+        exact.push_back(r.irradiance);
+        mirrored += r.mirrored > 0;
+      }
+      EXPECT_GT(mirrored, 20);
+      for (const double tolerance : {0.01, 0.05, 0.2, 0.5}) {
+        int violations = 0, stopped_late = 0;
+        for (size_t i = 0; i < points.size(); ++i) {
+          const LocalPassResult r = pass.gather(points[i], Vec3::UnitZ(), tolerance);
+          const Rgb error = (r.irradiance - exact[i]).cwiseAbs();
+          const Rgb slack = Rgb::Constant(1e-12) + 1e-12 * exact[i];
+          if (((error - r.bound).array() > slack.array()).any() && ++violations <= 3) {
+            ADD_FAILURE() << method_name(method) << " T=" << tolerance << " at "
+                          << points[i].transpose() << ": error " << error.transpose()
+                          << " bound " << r.bound.transpose();
+          }
+          if (r.bound.maxCoeff() > tolerance * r.irradiance.maxCoeff() * (1 + 1e-12) + 1e-15)
+            ++stopped_late;
+        }
+        EXPECT_EQ(violations, 0) << method_name(method) << " tolerance " << tolerance;
+        EXPECT_EQ(stopped_late, 0) << method_name(method) << " tolerance " << tolerance;
+      }
+    }
+  }
 }
 
 }  // namespace
