@@ -148,23 +148,29 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
   const bool queries = !blocker_pieces_.empty();
   // Faces that may be hidden: by a query too (hemisphere), or by the method's own gather.
   const bool faces_by_query = queries && faces_by_query_;
-  std::optional<BlockerSurface> blocker_surface;
-  std::vector<char> inserted;
-  const auto visible_form_factor = [&](const Cluster& cluster, int begin, int end) {
-    if (!blocker_surface) {
-      blocker_surface.emplace(x, n, tolerance_);
-      inserted.assign(blocker_pieces_.size(), 0);
+  // Two surfaces: every blocker opaque, and (with filters among the blockers) the opaque
+  // blockers alone, the filters left out: the two visible form factors bracket what passes.
+  std::optional<BlockerSurface> surfaces[2];
+  std::vector<char> inserted[2];
+  const auto visible_form_factor = [&](const Cluster& cluster, int begin, int end,
+                                       bool without_filters) {
+    std::optional<BlockerSurface>& surface = surfaces[without_filters];
+    std::vector<char>& in = inserted[without_filters];
+    if (!surface) {
+      surface.emplace(x, n, tolerance_);
+      in.assign(blocker_pieces_.size(), 0);
     }
     for (int i = begin; i < end; ++i) {
-      if (inserted[pool[i]]) continue;
-      inserted[pool[i]] = 1;
+      if (in[pool[i]]) continue;
+      in[pool[i]] = 1;
+      if (without_filters && filter_polygon_[pool[i]]) continue;
       for (const EmittingFace& piece : blocker_pieces_[pool[i]]) {
-        blocker_surface->add(piece.polygon, piece.vertices, piece.normal);
+        surface->add(piece.polygon, piece.vertices, piece.normal);
         ++result.projected;
       }
     }
     ++result.projected;
-    return blocker_surface->visible_form_factor(cluster.polygon, cluster.outline, cluster.normal);
+    return surface->visible_form_factor(cluster.polygon, cluster.outline, cluster.normal);
   };
 
   // Adds cluster c, seen by x whole or through the blockers listed in pool[begin, end).
@@ -175,12 +181,16 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     Term t{0, c, begin, end, Rgb::Zero(), cluster.bmax * ff};
     // What may be hidden, when queries are at hand: its visible form factor, exactly.
     // (At tolerance 0 a partly hidden cluster is only a way down to its faces: no query.)
-    // (Not through a filter: the query takes every blocker as opaque; see the header.)
+    // Through filters, the visible form factor with them opaque (`visible`, for the lower
+    // ends) and without them (`visible_hi`, for the upper ends): see the header. A face seen
+    // through a filter is never exact by a query.
     const bool through_filter = std::any_of(pool.begin() + begin, pool.begin() + end,
                                             [&](int p) { return filter_polygon_[p] != 0; });
-    const bool query = !t.seen_whole() && queries && !through_filter &&
-                       (cluster.is_leaf() ? faces_by_query : !exact_only);
-    const double visible = query ? visible_form_factor(cluster, begin, end) : ff;
+    const bool query = !t.seen_whole() && queries &&
+                       (cluster.is_leaf() ? faces_by_query && !through_filter : !exact_only);
+    const double visible = query ? visible_form_factor(cluster, begin, end, false) : ff;
+    const double visible_hi =
+        query && through_filter ? visible_form_factor(cluster, begin, end, true) : visible;
     const bool known = t.seen_whole() || query;
     if (cluster.is_leaf() && known) {  // exact: B FF(x, visible part of the face)
       exact += faces_[cluster.face].exitance * visible;
@@ -215,7 +225,7 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
             ? std::max(0.0, visible - cluster.gap_area / (std::numbers::pi * h * h))
             : 0.0;
     t.lo = cluster.bmin * ff_lo;  // zeroth order: bmin sum FF_A <= term <= bmax sum FF_A
-    t.hi = cluster.bmax * visible;
+    t.hi = cluster.bmax * visible_hi;
     // First order: with kmin <= k <= kmax on the outline (cluster_bounds.h), the term
     // sum B_A FF_A = bmean sum FF_A + sum (B_A - bmean) (FF_A - area_A kmid), since
     // sum (B_A - bmean) area_A = 0; each |FF_A - area_A kmid| <= area_A (kmax - kmin) / 2.
@@ -236,10 +246,12 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
     if (query) {
       // Partly hidden, with V = visible known: the term is bmean sum FF'_A + sum (B_A - bmean)
       // FF'_A over the faces' visible parts, with sum FF'_A in [ff_lo, V] and each
-      // FF'_A <= area_A kmax, so it is within babs kmax of bmean sum FF'_A.
+      // FF'_A <= area_A kmax, so it is within babs kmax of bmean sum FF'_A. (Through filters
+      // FF'_A weighs the kernel by what passes, in [0, 1], and the sum lies in
+      // [ff_lo, visible_hi].)
       const Rgb spread = cluster.babs * kernel.kmax;
       t.lo = t.lo.cwiseMax(cluster.bmean * ff_lo - spread);
-      t.hi = t.hi.cwiseMin(cluster.bmean * visible + spread);
+      t.hi = t.hi.cwiseMin(cluster.bmean * visible_hi + spread);
     }
     t.lo = t.lo.cwiseMin(t.hi);  // the two agree but for rounding
     t.width = (t.hi - t.lo).maxCoeff();

@@ -31,8 +31,10 @@
 ///  - filters (000 §2.2): a face's term is B_A times the integral over A of the kernel times
 ///    the product of the transmittances crossed on the way (0 through an opaque polygon), so it
 ///    still lies in [0, B_A FF_A] and is exact when nothing lies in its shaft. The visibility
-///    query treats every blocker as opaque, which would make bmax V too low: a cluster with a
-///    filter among its blockers gets no query (its upper end stays bmax FF, its lower end 0).
+///    query treats every blocker as opaque, so through filters it is asked twice: with them
+///    (V, every weight taken as 0: the lower ends) and without them (V_hi, every weight as 1:
+///    the upper ends, bmax V_hi and bmean V_hi + babs kmax); the weighted visible form factor
+///    lies between. A face seen through a filter is never exact by a query.
 ///  - a single face: B FF(x, face) when seen whole (Lambert); B V by the query (hemisphere);
 ///    otherwise [0, B FF] until vertex tracing gathers it exactly, in steps of one session
 ///    with the faces of its blocking polygons that meet its shaft.

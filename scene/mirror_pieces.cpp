@@ -11,7 +11,8 @@ std::vector<MirrorPiece> mirror_pieces(const Scene& scene) {
   for (const EmittingFace& f : faces_from_polygons(scene)) {
     const Material& m = scene.materials[scene.polygons[f.polygon].material];
     if (!m.is_mirror()) continue;
-    pieces.push_back({f.polygon, f.vertices, f.normal, f.normal.dot(f.vertices.front()), m.specular});
+    pieces.push_back(
+        {f.polygon, f.vertices, f.normal, f.normal.dot(f.vertices.front()), m.specular});
   }
   return pieces;
 }

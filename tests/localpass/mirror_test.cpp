@@ -12,9 +12,9 @@
 #include "localpass/monte_carlo.h"
 #include "radiosity/solution_faces.h"
 #include "radiosity/solver.h"
-#include "scene/ray_caster.h"
 #include "scene/polygon_faces.h"
 #include "scene/polygon_validation.h"
+#include "scene/ray_caster.h"
 #include "tests/closed_forms.h"
 #include "tests/scene_builder.h"
 #include "vertex/vertex_tracer.h"
@@ -367,8 +367,8 @@ TEST(Mirror, CertifiedBoundHoldsThroughMirrorsAndFiltersWithZeroViolations) {
           const Rgb slack = Rgb::Constant(1e-12) + 1e-12 * exact[i];
           if (((error - r.bound).array() > slack.array()).any() && ++violations <= 3) {
             ADD_FAILURE() << method_name(method) << " T=" << tolerance << " at "
-                          << points[i].transpose() << ": error " << error.transpose()
-                          << " bound " << r.bound.transpose();
+                          << points[i].transpose() << ": error " << error.transpose() << " bound "
+                          << r.bound.transpose();
           }
           if (r.bound.maxCoeff() > tolerance * r.irradiance.maxCoeff() * (1 + 1e-12) + 1e-15)
             ++stopped_late;

@@ -58,8 +58,8 @@ TEST(MirrorSolver, NothingEscapesAClosedRoomWithAMirror) {
   SceneBuilder b;
   const int white = b.material("white", Rgb::Constant(0.5), Rgb::Zero());
   const int lamp = b.material("lamp", Rgb::Constant(0.5), Rgb::Ones());
-  const int mirror = b.material("mirror", Rgb::Constant(0.05), Rgb::Zero(), Rgb::Zero(),
-                                Rgb::Constant(0.9));
+  const int mirror =
+      b.material("mirror", Rgb::Constant(0.05), Rgb::Zero(), Rgb::Zero(), Rgb::Constant(0.9));
   b.rectangle(0, 1, 0, 1, 0, false, lamp);
   b.rectangle(0, 1, 0, 1, 1, true, white);
   b.polygon({{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, white);
@@ -69,8 +69,7 @@ TEST(MirrorSolver, NothingEscapesAClosedRoomWithAMirror) {
   const Solution s = solve(RayCaster(b.scene()), SolverSettings{});
   const SolveStats& st = s.stats;
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(st.absorbed[c] + st.escaped[c] + st.unshot[c], st.emitted[c],
-                1e-9 * st.emitted[c]);
+    EXPECT_NEAR(st.absorbed[c] + st.escaped[c] + st.unshot[c], st.emitted[c], 1e-9 * st.emitted[c]);
     EXPECT_LT(std::abs(st.escaped[c]), 0.02 * st.emitted[c]) << "channel " << c;
   }
 }

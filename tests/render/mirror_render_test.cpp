@@ -20,10 +20,10 @@ TEST(MirrorRender, TheBoxInAMirrorIsTheBoxSeenFromTheCamerasImage) {
   mirrored.materials.push_back(
       Material{"mirror", Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Ones()});
   std::vector<std::string> warnings;
-  for (Polygon& p : make_polygons({{-200, -200, -400}, {800, -200, -400}, {800, 800, -400},
-                                   {-200, 800, -400}},
-                                  "mirror", static_cast<int>(mirrored.materials.size()) - 1,
-                                  static_cast<int>(mirrored.objects.size()), 0, warnings)) {
+  for (Polygon& p :
+       make_polygons({{-200, -200, -400}, {800, -200, -400}, {800, 800, -400}, {-200, 800, -400}},
+                     "mirror", static_cast<int>(mirrored.materials.size()) - 1,
+                     static_cast<int>(mirrored.objects.size()), 0, warnings)) {
     ASSERT_GT(p.normal.z(), 0.99) << "the mirror must face the box";
     mirrored.polygons.push_back(p);
   }
