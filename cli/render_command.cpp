@@ -35,6 +35,7 @@ std::vector<std::string> render_method_names() {
 
 struct RenderOptions {
   std::string scene;
+  bool no_mirror_culling = false;
   std::string method = "hemisphere";
   std::string solution;  ///< .vtp from `solve`, for methods that need one
   double tolerance = 0.1;
@@ -150,7 +151,9 @@ void run_render(const RenderOptions& o) {
         result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces),
                                     o.samples, progress);
       } else {
-        pass.emplace(scene, faces, *method);
+        LocalPassSettings settings;
+        settings.mirror_culling = !o.no_mirror_culling;
+        pass.emplace(scene, faces, *method, settings);
         result = render_local_pass(scene, caster, camera, *pass, o.tolerance, progress);
       }
       bar.finish();
@@ -248,6 +251,9 @@ void add_render_command(CLI::App& app, Run& run) {
       "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
   add_solution_option(sub, &o->solution);
   sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");
+  sub->add_flag("--no-mirror-culling", o->no_mirror_culling,
+                "Exact methods: gather every mirror chain at every point facing its first mirror "
+                "(no culling beams, paper 000 §5; the same image, slower: for measuring them)");
   sub->add_option("-o,--output", o->output, "Output image (.exr, linear float RGB)")->required();
   sub->add_option("--preview", o->preview, "PNG preview path (default: OUTPUT with .png)");
   sub->add_flag("--no-preview", o->no_preview, "Do not write the PNG preview");
