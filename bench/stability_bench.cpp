@@ -1,6 +1,9 @@
 // The stability report (DESIGN.md §4): seeded scene families built to be degenerate for the
 // exact gatherers, each run through the hemisphere gatherer, vertex tracing and the Monte Carlo
-// baseline (direct light: every polygon occludes, the lamps emit). Per family: the largest
+// baseline (direct light: every polygon occludes, the lamps emit). Families with filters
+// (000 §2.2) compare vertex tracing with the identity of independent removals over opaque
+// hemisphere gathers (tests/filter_identity.h); families with mirrors (000 §3) run both exact
+// methods through the local pass at tolerance 0, which unfolds the mirrors. Per family: the largest
 // relative disagreement between the two exact methods, how many points disagree beyond 1e-9,
 // Monte Carlo's error against them, NaN counts, and the seconds each method took. Prints a
 // Markdown table (make stability writes bench/results/stability.md). Single-threaded, so the
@@ -11,12 +14,15 @@
 #include <cstdio>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hemisphere/hemisphere_gatherer.h"
+#include "localpass/local_pass.h"
 #include "localpass/monte_carlo.h"
 #include "scene/polygon_faces.h"
+#include "tests/filter_identity.h"
 #include "tests/random_scenes.h"
 #include "vertex/vertex_tracer.h"
 
@@ -36,7 +42,35 @@ struct Family {
   const char* stresses;
   int scenes;
   std::function<RandomScene(RandomSceneMaker&)> make;
+  /// opaque: the two gatherers as they are; filters: vertex tracing against the subset
+  /// identity of opaque hemisphere gathers; mirrors: both through the local pass.
+  enum class Kind { opaque, filters, mirrors } kind = Kind::opaque;
 };
+
+/// A rectangle in the plane x = at (y in [y0, y1], z in [z0, z1]), front towards +x or -x.
+void wall_x(SceneBuilder& b, double at, double y0, double y1, double z0, double z1, bool plus_x,
+            int material) {
+  if (plus_x) {
+    b.polygon({Vec3(at, y0, z0), Vec3(at, y1, z0), Vec3(at, y1, z1), Vec3(at, y0, z1)}, material);
+  } else {
+    b.polygon({Vec3(at, y0, z0), Vec3(at, y0, z1), Vec3(at, y1, z1), Vec3(at, y1, z0)}, material);
+  }
+}
+
+/// The same in the plane y = at, front towards +y or -y.
+void wall_y(SceneBuilder& b, double at, double x0, double x1, double z0, double z1, bool plus_y,
+            int material) {
+  if (plus_y) {
+    b.polygon({Vec3(x0, at, z0), Vec3(x0, at, z1), Vec3(x1, at, z1), Vec3(x1, at, z0)}, material);
+  } else {
+    b.polygon({Vec3(x0, at, z0), Vec3(x1, at, z0), Vec3(x1, at, z1), Vec3(x0, at, z1)}, material);
+  }
+}
+
+int mirror_material(SceneBuilder& b, RandomSceneMaker& m) {
+  return b.material("mirror", Rgb::Constant(m.uniform(0, 0.1)), Rgb::Zero(), Rgb::Zero(),
+                    Rgb(m.uniform(0.5, 0.9), m.uniform(0.5, 0.9), m.uniform(0.5, 0.9)));
+}
 
 /// A floor at z = 0 (split along its diagonal into two triangles), lamps above, and what
 /// `add` builds; sites are added by `add` too.
@@ -162,6 +196,88 @@ std::vector<Family> families() {
              out.sites.push_back({Vec3(m.uniform(-1, 1), m.uniform(-1, 1), 0), Vec3::UnitZ()});
          });
        }},
+      {"filters_random", "filters at random: concave, interpenetrating, x on a filter", 60,
+       [](RandomSceneMaker& m) {
+         RandomScene r = m.random_scene();
+         rad::test::make_filters(r.scene, m, 8);
+         return r;
+       },
+       Family::Kind::filters},
+      {"filters_conjunctive", "the five conjunctive families with their blockers as filters", 60,
+       [](RandomSceneMaker& m) {
+         RandomScene r =
+             m.conjunctive_scene(static_cast<RandomSceneMaker::Conjunction>(m.integer(0, 4)));
+         rad::test::make_filters(r.scene, m, 8);
+         return r;
+       },
+       Family::Kind::filters},
+      {"mirror_corner", "two mirror walls meeting in a corner (their depth-2 images coincide)", 30,
+       [](RandomSceneMaker& m) {
+         return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
+           lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2),
+                      m.uniform(0.2, 0.5));
+           const int mirror = mirror_material(b, m);
+           wall_x(b, 1.5, -2, 1.5, 0, 2, false, mirror);
+           wall_y(b, 1.5, -2, 1.5, 0, 2, false, mirror);
+           b.polygon(m.polygon(Vec3(0.5, 0.5, m.uniform(0.3, 1)), m.unit(), 0.3), grey);
+           for (int i = 0; i < 3; ++i)
+             out.sites.push_back({Vec3(m.uniform(-1, 1.4), m.uniform(-1, 1.4), 0), Vec3::UnitZ()});
+         });
+       },
+       Family::Kind::mirrors},
+      {"block_on_mirror", "a block standing on a mirror floor: x on its faces near the mirror", 30,
+       [](RandomSceneMaker& m) {
+         SceneBuilder b;
+         const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
+         const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Ones());
+         b.rectangle(-2, 2, -2, 2, 0, false, mirror_material(b, m));
+         lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1.5, 2.5),
+                    m.uniform(0.2, 0.5));
+         const double s = m.uniform(0.2, 0.5), h = m.uniform(0.2, 0.8);
+         b.rectangle(-s, s, -s, s, h, false, grey);  // top
+         wall_x(b, s, -s, s, 0, h, true, grey);
+         wall_x(b, -s, -s, s, 0, h, false, grey);
+         wall_y(b, s, -s, s, 0, h, true, grey);
+         wall_y(b, -s, -s, s, 0, h, false, grey);
+         wall_x(b, 1.9, -2, 2, 0, 2, false, grey);  // a wall the mirror shows the block on
+         RandomScene out{b.scene(), {}};
+         for (int i = 0; i < 3; ++i) {
+           const double z = i == 0 ? 1e-9 : m.uniform(0, 0.05) * h;  // at the mirror's plane
+           out.sites.push_back({Vec3(s, m.uniform(-s, s), z), Vec3::UnitX()});
+         }
+         out.sites.push_back({Vec3(1.9, m.uniform(-1, 1), m.uniform(0, 1)), -Vec3::UnitX()});
+         return out;
+       },
+       Family::Kind::mirrors},
+      {"concave_mirror", "an L-shaped mirror (its triangles coplanar pieces) on a wall", 30,
+       [](RandomSceneMaker& m) {
+         return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
+           lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2),
+                      m.uniform(0.2, 0.5));
+           const double t = m.uniform(0.3, 0.8);
+           b.polygon({Vec3(1.5, -1, 0.1), Vec3(1.5, -1, 1.5), Vec3(1.5, -1 + t, 1.5),
+                      Vec3(1.5, -1 + t, 0.1 + t), Vec3(1.5, 1, 0.1 + t), Vec3(1.5, 1, 0.1)},
+                     mirror_material(b, m));
+           b.polygon(m.polygon(Vec3(1.0, 0, m.uniform(0.3, 1)), m.unit(), 0.2), grey);
+           for (int i = 0; i < 3; ++i)
+             out.sites.push_back({Vec3(m.uniform(-1, 1.4), m.uniform(-1, 1), 0), Vec3::UnitZ()});
+         });
+       },
+       Family::Kind::mirrors},
+      {"x_on_mirror_plane", "x on a wall in the mirror's plane, and on the mirror's edge", 30,
+       [](RandomSceneMaker& m) {
+         return with_floor(m, [&](SceneBuilder& b, int grey, int lamp, RandomScene& out) {
+           lamp_above(b, lamp, m.uniform(-0.5, 0.5), m.uniform(-0.5, 0.5), m.uniform(1, 2),
+                      m.uniform(0.2, 0.5));
+           const double y = m.uniform(-0.5, 0.5);
+           wall_x(b, 1.5, -2, y, 0, 2, false, mirror_material(b, m));
+           wall_x(b, 1.5, y, 2, 0, 2, false, grey);  // coplanar, beside it
+           out.sites.push_back({Vec3(1.5, m.uniform(y, 2), m.uniform(0, 2)), -Vec3::UnitX()});
+           out.sites.push_back({Vec3(1.5, y, m.uniform(0, 2)), -Vec3::UnitX()});  // the seam
+           out.sites.push_back({Vec3(m.uniform(-1, 1.4), m.uniform(-1, 1), 0), Vec3::UnitZ()});
+         });
+       },
+       Family::Kind::mirrors},
   };
 }
 
@@ -196,18 +312,36 @@ int main() {
     for (int s = 1; s <= family.scenes; ++s) {
       RandomSceneMaker maker(100000 * (f + 1) + s);
       const RandomScene r = family.make(maker);
-      const rad::HemisphereGatherer hemisphere(rad::faces_from_polygons(r.scene),
-                                               r.scene.tolerance());
-      const rad::VertexTracer tracer(r.scene);
-      const rad::MonteCarloGatherer monte_carlo(r.scene, rad::faces_from_polygons(r.scene));
+      const std::vector<rad::EmittingFace> faces = rad::faces_from_polygons(r.scene);
+      std::vector<int> filters;
+      for (size_t p = 0; p < r.scene.polygons.size(); ++p) {
+        if (r.scene.materials[r.scene.polygons[p].material].is_filter())
+          filters.push_back(static_cast<int>(p));
+      }
+      const bool mirrors = family.kind == Family::Kind::mirrors;
+      const bool opaque = family.kind == Family::Kind::opaque;
+      std::optional<rad::HemisphereGatherer> hemisphere;
+      std::optional<rad::VertexTracer> tracer;
+      std::optional<rad::LocalPass> hemisphere_pass, vertex_pass;
+      if (mirrors) {
+        hemisphere_pass.emplace(r.scene, faces, rad::Method::hemisphere);
+        vertex_pass.emplace(r.scene, faces, rad::Method::vertex);
+      } else {
+        if (opaque) hemisphere.emplace(faces, r.scene.tolerance());
+        tracer.emplace(r.scene);
+      }
+      const rad::MonteCarloGatherer monte_carlo(r.scene, faces);
       for (size_t i = 0; i < r.sites.size(); ++i) {
         const auto& site = r.sites[i];
         ++points;
         auto start = Clock::now();
-        const Rgb h = hemisphere.gather(site.x, site.n).irradiance;
+        const Rgb h = mirrors  ? hemisphere_pass->gather(site.x, site.n, 0).irradiance
+                      : opaque ? hemisphere->gather(site.x, site.n).irradiance
+                               : rad::test::by_subsets(r.scene, faces, filters, site.x, site.n);
         t_h += seconds_since(start);
         start = Clock::now();
-        const Rgb v = tracer.gather(site.x, site.n).irradiance;
+        const Rgb v = mirrors ? vertex_pass->gather(site.x, site.n, 0).irradiance
+                              : tracer->gather(site.x, site.n).irradiance;
         t_v += seconds_since(start);
         start = Clock::now();
         const Rgb mc = monte_carlo.gather(site.x, site.n, kMonteCarloSamples, 1000 * s + i);

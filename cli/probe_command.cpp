@@ -1,7 +1,7 @@
 // `radiosity probe SCENE --points P.csv [--solution S.vtp [--tolerance T]] [--method
-// hemisphere|vertex]
-// [-o OUT.csv]`: exact irradiance at given points: direct lighting only (polygons radiate their
-// emission, all occlude), or from a solution through the error-bounded local pass.
+// hemisphere|vertex|montecarlo|pathtrace] [-o OUT.csv]`: exact irradiance at given points: direct
+// lighting only (polygons radiate their emission, all occlude; mirrors reflect it), or from a
+// solution through the error-bounded local pass; or, as the reference, the scene path-traced.
 #include <tbb/parallel_for.h>
 
 #include <atomic>
@@ -20,12 +20,20 @@
 #include "localpass/local_pass.h"
 #include "localpass/method.h"
 #include "localpass/monte_carlo.h"
+#include "localpass/path_tracer.h"
 #include "radiosity/solution_faces.h"
 #include "scene/error.h"
 #include "scene/polygon_faces.h"
 
 namespace rad::cli {
 namespace {
+
+/// The local pass's methods and the path tracer.
+std::vector<std::string> probe_method_names() {
+  std::vector<std::string> names = method_names();
+  names.push_back("pathtrace");
+  return names;
+}
 
 struct ProbeOptions {
   std::string scene;
@@ -45,16 +53,32 @@ void run_probe(const ProbeOptions& o) {
   const std::vector<ProbePoint> points = read_points_csv(o.points);
   std::vector<Rgb> irradiance(points.size());
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
+  std::vector<Rgb> standard_error;                // the path tracer's
   std::function<void(size_t)> gather;
+  // The path tracer of the scene itself: no solution, every bounce sampled.
+  std::optional<PathTracer> path_tracer;
+  if (o.method == "pathtrace") {
+    if (!o.solution.empty())
+      throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
+    path_tracer.emplace(scene);
+    standard_error.assign(points.size(), Rgb::Zero());
+    gather = [&](size_t i) {
+      const PathTraceEstimate e = path_tracer->irradiance(points[i].x, points[i].n, o.samples, i);
+      irradiance[i] = e.mean;
+      standard_error[i] = e.standard_error;
+      bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
+    };
+  }
   // Only the chosen method is built (vertex tracing precomputes interpenetrations).
-  const Method method = *parse_method(o.method);  // CLI11 checked the name
+  const Method method = parse_method(o.method).value_or(Method::montecarlo);
   std::unique_ptr<ExactGatherer> direct;
   std::optional<LocalPass> pass;
   std::optional<MonteCarloGatherer> monte_carlo;
-  if (!is_exact(method) && o.solution.empty()) {
+  if (path_tracer) {
+    // set up above
+  } else if (!is_exact(method) && o.solution.empty()) {
     throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
-  }
-  if (!o.solution.empty()) {
+  } else if (!o.solution.empty()) {
     const Solution solution = load_solution_for(scene, o.scene, o.solution);
     if (!is_exact(method)) {
       monte_carlo.emplace(scene, faces_from_solution(scene, solution));
@@ -102,17 +126,20 @@ void run_probe(const ProbeOptions& o) {
   });
   bar.finish();
 
+  const std::vector<Rgb>* errors = path_tracer ? &standard_error : nullptr;
   if (o.output.empty()) {
-    write_probe_csv(std::cout, points, irradiance, bound);
+    write_probe_csv(std::cout, points, irradiance, bound, errors);
   } else {
-    write_text_file(o.output,
-                    [&](std::ostream& file) { write_probe_csv(file, points, irradiance, bound); });
+    write_text_file(o.output, [&](std::ostream& file) {
+      write_probe_csv(file, points, irradiance, bound, errors);
+    });
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string what =
-      o.solution.empty() ? "direct only"
-                         : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);
+      path_tracer ? "the scene path-traced, " + std::to_string(o.samples) + " paths a point"
+      : o.solution.empty() ? "direct only"
+                           : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);
   std::cerr << "probe: " << points.size() << " points, " << o.method << ", " << what << ", "
             << seconds << " s" << (o.output.empty() ? "" : "; wrote " + o.output) << "\n";
 }
@@ -144,8 +171,10 @@ void add_probe_command(CLI::App& app, Run& run) {
          "hemisphere: exact projection onto the hemisphere (paper 004); vertex: vertex tracing "
          "with "
          "angular spans (paper 001). Both exact; they agree to 1e-9. montecarlo (with --solution): "
-         "--samples cosine-weighted rays per point, bound left empty")
-      ->check(CLI::IsMember(method_names()))
+         "--samples cosine-weighted rays per point, bound left empty. pathtrace (no --solution): "
+         "the scene itself path-traced, every bounce sampled, --samples paths per point, the "
+         "reference; adds columns se_r,se_g,se_b (standard errors), bound left empty")
+      ->check(CLI::IsMember(probe_method_names()))
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");
   add_tolerance_option(

@@ -77,15 +77,21 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
 }
 
 void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
-                     const std::vector<Rgb>& irradiance, const std::vector<double>& bound) {
-  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound\n";
+                     const std::vector<Rgb>& irradiance, const std::vector<double>& bound,
+                     const std::vector<Rgb>* standard_error) {
+  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound" << (standard_error ? ",se_r,se_g,se_b" : "") << "\n";
   std::string row;
   for (size_t i = 0; i < points.size(); ++i) {
     const ProbePoint& p = points[i];
     const Rgb& e = irradiance[i];
     row.clear();
-    for (const double v :
-         {p.x.x(), p.x.y(), p.x.z(), p.n.x(), p.n.y(), p.n.z(), e.x(), e.y(), e.z(), bound[i]}) {
+    std::vector<double> values{p.x.x(), p.x.y(), p.x.z(), p.n.x(), p.n.y(),
+                               p.n.z(), e.x(),   e.y(),   e.z(),   bound[i]};
+    if (standard_error) {
+      const Rgb& se = (*standard_error)[i];
+      values.insert(values.end(), {se.x(), se.y(), se.z()});
+    }
+    for (const double v : values) {
       // The shortest text that reads back to the same double; nothing for what is not finite
       // (Monte Carlo's bound: none is certified), so no NaN or inf ever reaches the file.
       if (!row.empty()) row.push_back(',');

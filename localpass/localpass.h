@@ -4,11 +4,13 @@
 /// can hide and groups that may be hidden (occlusion_culling.h, shaft.h), gather the groups in
 /// order of decreasing bound through an exact gatherer, and stop at the tolerance with a
 /// certified bound (local_pass.h); plane mirrors by chains unfolded into scenes of their own
-/// (mirror_images.h, 000 §3, §5). Also the method names (method.h) and the Monte Carlo
-/// baseline (monte_carlo.h).
+/// (mirror_images.h, 000 §3, §5). Also the method names (method.h), the Monte Carlo
+/// baseline (monte_carlo.h) and the path tracer of the scene itself, the reference
+/// (path_tracer.h).
 ///
 /// May use: octree, hemisphere, vertex, radiosity, scene, geometry.
 #include "localpass/local_pass.h"
 #include "localpass/method.h"
 #include "localpass/mirror_images.h"
 #include "localpass/monte_carlo.h"
+#include "localpass/path_tracer.h"

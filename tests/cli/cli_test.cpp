@@ -218,6 +218,41 @@ TEST(Cli, ProbeVertexMethodAgreesWithHemisphere) {
   EXPECT_NE(run(args + " --method montecarlo").exit_code, 0);
 }
 
+TEST(Cli, ProbePathTracesTheFurnaceWithStandardErrors) {
+  // The closed cube (E = 1, rho = 0.5): H = 2 within 4 standard errors, in the extra columns,
+  // the bound left empty; the path tracer takes no solution, and the same seeds give the same
+  // file on any thread count.
+  const fs::path dir = scratch();
+  {
+    std::ofstream points(dir / "cube.csv");
+    points << "x,y,z,nx,ny,nz\n0.5,0.5,0,0,0,1\n0.2,0.8,0,0,0,1\n0.5,0,0.5,0,1,0\n";
+  }
+  const std::string args = "probe " + quoted(kRoot / "data/closed-cube/scene.json") + " --points " +
+                           quoted(dir / "cube.csv") + " --method pathtrace --samples 4000";
+  const Result r = run(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(run(args + " -j 1").out, r.out);
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound,se_r,se_g,se_b");
+  int rows = 0;
+  for (; std::getline(in, line); ++rows) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    ASSERT_EQ(f.size(), 13u) << line;
+    EXPECT_TRUE(f[9].empty()) << "nothing certified: " << line;
+    const double e = std::stod(f[6]), se = std::stod(f[10]);
+    EXPECT_NEAR(e, 2.0, 4 * se) << line;
+    EXPECT_LT(se, 0.05) << line;
+  }
+  EXPECT_EQ(rows, 3);
+  const Result refused = run(args + " --solution " + quoted(dir / "cube.csv"));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("takes no --solution"), std::string::npos) << refused.err;
+}
+
 TEST(Cli, ProbeRejectsMalformedPointsNamingTheLine) {
   const std::string scene = quoted(kRoot / "data/cornell-box/scene.json");
   const std::pair<const char*, const char*> cases[] = {
