@@ -38,7 +38,8 @@ demo: build
 # Paper 000's exact extensions on a Cornell box with a stained-glass pane under the light and a
 # mirror on the green wall: solve (filters tint the shadow rays, the mirror shoots images), the
 # exact local pass by vertex tracing (the hemisphere method refuses filters), a Monte Carlo
-# gather from the same solution through the same filters and mirror, and the error map between.
+# gather from the same solution through the same filters and mirror, and the error map between;
+# then the path-traced reference of the scene itself and the whole pipeline's error against it.
 GLASS_OUT ?= out/cornell-glass-mirror
 GLASS = data/cornell-glass-mirror/scene.json
 GLASS_SIZE ?= 192
@@ -52,6 +53,10 @@ demo-glass: build
 	  --width $(GLASS_SIZE) --height $(GLASS_SIZE) -o $(GLASS_OUT)/montecarlo.exr
 	$(RADIOSITY) compare $(GLASS_OUT)/local-pass.exr $(GLASS_OUT)/montecarlo.exr \
 	  -o $(GLASS_OUT)/error-map.exr --max 0.1
+	$(RADIOSITY) render $(GLASS) --method pathtrace --samples 4096 \
+	  --width $(GLASS_SIZE) --height $(GLASS_SIZE) -o $(GLASS_OUT)/pathtrace.exr
+	$(RADIOSITY) compare $(GLASS_OUT)/local-pass.exr $(GLASS_OUT)/pathtrace.exr \
+	  -o $(GLASS_OUT)/error-map-pathtrace.exr --max 0.1
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)

@@ -16,6 +16,7 @@
 #include "formats/image_io.h"
 #include "formats/solution_io.h"
 #include "localpass/method.h"
+#include "localpass/path_tracer.h"
 #include "radiosity/solution_faces.h"
 #include "render/albedo_render.h"
 #include "render/irradiance_render.h"
@@ -29,7 +30,7 @@ namespace {
 /// The local pass's methods (localpass/method.h) and the plain renders.
 std::vector<std::string> render_method_names() {
   std::vector<std::string> names = method_names();
-  for (const char* plain : {"patches", "albedo", "facing"}) names.emplace_back(plain);
+  for (const char* plain : {"patches", "albedo", "facing", "pathtrace"}) names.emplace_back(plain);
   return names;
 }
 
@@ -167,6 +168,17 @@ void run_render(const RenderOptions& o) {
     } else {
       image = render_patches(scene, solution, camera, !o.no_ambient);
     }
+  } else if (o.method == "pathtrace") {
+    if (!o.solution.empty())
+      throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
+    const RayCaster caster(scene);
+    const PathTracer tracer(scene);
+    ProgressBar bar("render");
+    const double total = static_cast<double>(spec.width) * spec.height;
+    image = render_path_traced(scene, caster, camera, tracer, o.samples, [&](size_t done) {
+              bar.update(done / total, std::to_string(done) + " pixels");
+            }).radiosity;
+    bar.finish();
   } else {
     const RayCaster caster(scene);
     image = o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera);
@@ -198,7 +210,9 @@ void run_render(const RenderOptions& o) {
   std::cerr << "render: " << o.method
             << (exact   ? " at tolerance " + std::to_string(o.tolerance)
                 : local ? " with " + std::to_string(o.samples) + " samples per pixel"
-                        : std::string())
+                : o.method == "pathtrace"
+                    ? " with " + std::to_string(o.samples) + " paths per pixel"
+                    : std::string())
             << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote "
             << written << "\n";
   if (exact) {
@@ -238,7 +252,9 @@ void add_render_command(CLI::App& app, Run& run) {
          "baseline; needs --solution); "
          "patches: the solution's element radiosities, Gouraud-interpolated (needs --solution); "
          "albedo: primary rays only (reflectance; emitters show their emission); "
-         "facing: albedo x |cos| to the eye, to see the geometry")
+         "facing: albedo x |cos| to the eye, to see the geometry; "
+         "pathtrace: the reference, B with H from --samples paths of the scene itself, every "
+         "bounce sampled (no solution)")
       ->check(CLI::IsMember(render_method_names()))
       ->capture_default_str();
   add_tolerance_option(

@@ -40,10 +40,15 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
       const double r = std::sqrt(r2);
       const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v +
                      std::sqrt(std::max(0.0, 1 - r2)) * n;
-      caster_->follow({origin, d}, faces_scene_.mirror_depth, offset_,
-                      [&](const Hit& hit, const Rgb& weight) {
-                        if (hit.front_facing) sum += weight.cwiseProduct(exitance_[hit.polygon]);
-                      });
+      // Half an offset back along the ray too, so that no ray starts inside a plane (at a point
+      // on an edge the lift along n stays in the neighbour's); what lies that near the point
+      // is passed (RayCaster::follow), as the exact gatherers see polygons through x edge-on.
+      caster_->follow(
+          {origin - 0.5 * offset_ * d, d}, faces_scene_.mirror_depth, offset_,
+          [&](const Hit& hit, const Rgb& weight) {
+            if (hit.front_facing) sum += weight.cwiseProduct(exitance_[hit.polygon]);
+          },
+          offset_);
     }
   }
   return sum / static_cast<double>(strata * strata);

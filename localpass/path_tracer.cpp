@@ -30,26 +30,29 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + 7);
   std::uniform_real_distribution<double> u(0, 1);
   // One sample of H at (p, normal) after `bounces` diffuse bounces.
-  const auto sample = [&](const auto& self, const Vec3& p, const Vec3& normal,
-                          int bounces) -> Rgb {
+  const auto sample = [&](const auto& self, const Vec3& p, const Vec3& normal, int bounces) -> Rgb {
     Rgb h = Rgb::Zero();
     const Vec3 d = cosine_direction(normal, rng);
-    caster_.follow({p + offset_ * normal, d}, scene_.mirror_depth, offset_,
-                   [&](const Hit& hit, const Rgb& weight) {
-                     if (!hit.front_facing) return;
-                     const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];
-                     Rgb b = m.emission;
-                     if (m.reflectance.maxCoeff() > 0) {
-                       const double keep =
-                           bounces < 2 ? 1.0 : std::min(0.95, m.reflectance.maxCoeff());
-                       if (u(rng) < keep) {
-                         b += m.reflectance.cwiseProduct(
-                                  self(self, hit.point, hit.normal, bounces + 1)) /
-                              keep;
-                       }
-                     }
-                     h += weight.cwiseProduct(b);
-                   });
+    // Off the surface along its normal, and half that back along the ray, so that no ray
+    // starts inside a plane (at a point on an edge the lift along the normal stays in the
+    // neighbour's); what lies that near the point is passed (RayCaster::follow), as the exact
+    // gatherers see polygons through x edge-on.
+    caster_.follow(
+        {p + offset_ * normal - 0.5 * offset_ * d, d}, scene_.mirror_depth, offset_,
+        [&](const Hit& hit, const Rgb& weight) {
+          if (!hit.front_facing) return;
+          const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];
+          Rgb b = m.emission;
+          if (m.reflectance.maxCoeff() > 0) {
+            const double keep = bounces < 2 ? 1.0 : std::min(0.95, m.reflectance.maxCoeff());
+            if (u(rng) < keep) {
+              b +=
+                  m.reflectance.cwiseProduct(self(self, hit.point, hit.normal, bounces + 1)) / keep;
+            }
+          }
+          h += weight.cwiseProduct(b);
+        },
+        offset_);
     return h;
   };
   Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
@@ -62,8 +65,8 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
   const double count = std::max(paths, 1);
   e.mean = sum / count;
   if (paths > 1) {
-    const Rgb variance = ((sum2 / count - e.mean.cwiseProduct(e.mean)) * (count / (count - 1)))
-                             .cwiseMax(0);
+    const Rgb variance =
+        ((sum2 / count - e.mean.cwiseProduct(e.mean)) * (count / (count - 1))).cwiseMax(0);
     e.standard_error = (variance / count).cwiseSqrt();
   }
   return e;

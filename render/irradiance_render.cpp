@@ -86,6 +86,25 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
   return image;
 }
 
+IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
+                                   const Camera& camera, const PathTracer& tracer, int paths,
+                                   const std::function<void(size_t)>& progress) {
+  IrradianceImage image = render_pixels(
+      caster, camera, scene.tolerance().ray_offset, progress,
+      [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
+        const Material& material = scene.materials[scene.polygons[hit.polygon].material];
+        if (material.reflectance == Rgb::Zero()) {
+          out.radiosity.pixels[index] += weight.cwiseProduct(material.emission);
+          return;
+        }
+        const Rgb h = tracer.irradiance(hit.point, hit.normal, paths, index).mean;
+        out.radiosity.pixels[index] +=
+            weight.cwiseProduct(material.emission + material.reflectance.cwiseProduct(h));
+      });
+  image.samples_per_pixel = paths;
+  return image;
+}
+
 IrradianceSummary summarize(const IrradianceImage& image) {
   IrradianceSummary s;
   double gathered_sum = 0, projected_sum = 0, clusters_sum = 0, relative_bound_sum = 0;

@@ -9,6 +9,7 @@
 #include "formats/image.h"
 #include "localpass/local_pass.h"
 #include "localpass/monte_carlo.h"
+#include "localpass/path_tracer.h"
 #include "scene/camera.h"
 #include "scene/ray_caster.h"
 
@@ -39,6 +40,13 @@ struct IrradianceSummary {
   double relative_bound_mean = 0, relative_bound_max = 0;
 };
 IrradianceSummary summarize(const IrradianceImage& image);
+
+/// The reference: B = E + rho H at the visible points with H from `paths` paths of the path
+/// tracer of the scene itself (localpass/path_tracer.h; no solution), seeded by the pixel
+/// index (bitwise the same for any thread count).
+IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
+                                   const Camera& camera, const PathTracer& tracer, int paths,
+                                   const std::function<void(size_t)>& progress = {});
 
 /// Renders through `camera` with the local pass at `tolerance`; parallel over 16x16 pixel tiles
 /// (TBB). Every pixel is computed on its own, so the image is bitwise the same for any thread

@@ -151,7 +151,8 @@ Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double 
 }
 
 void RayCaster::follow(const Ray& ray, int mirror_depth, double gap,
-                       const std::function<void(const Hit&, const Rgb&)>& visit) const {
+                       const std::function<void(const Hit&, const Rgb&)>& visit,
+                       double near) const {
   struct Branch {
     Ray ray;
     Rgb weight;
@@ -162,9 +163,14 @@ void RayCaster::follow(const Ray& ray, int mirror_depth, double gap,
   while (!branches.empty()) {
     Branch b = branches.back();
     branches.pop_back();
+    const bool first_leg = b.reflections == 0;
     while (true) {
       const auto hit = closest_hit(b.ray, b.t_min);
       if (!hit) break;
+      if (first_leg && hit->distance < near) {
+        b.t_min = std::max(hit->distance, b.t_min) + gap;
+        continue;
+      }
       visit(*hit, b.weight);
       const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
       if (hit->front_facing && m.is_mirror() && b.reflections < mirror_depth) {

@@ -49,10 +49,14 @@ class RayCaster {
   /// of mirrors (reflected, times the specular reflectance, at most `mirror_depth` times along
   /// a path: 000 §3), calling visit(hit, weight) for each surface met, weight the product of
   /// what the filters and mirrors before it passed on. Ends at opaque surfaces and misses.
-  /// Hits closer than `gap` to the previous one are the same surface. Without filters and
+  /// Hits closer than `gap` to the previous one are the same surface. Surfaces met within
+  /// `near` of the ray's origin on its first leg are passed through: for a ray started a little
+  /// off its receiver point (along the normal, and back along the ray, so that it never starts
+  /// inside a plane), they are polygons whose plane holds the point (an edge, a wall's foot),
+  /// which the exact gatherers see edge-on: no solid angle, no occlusion. Without filters and
   /// mirrors: the first hit alone, with weight 1.
   void follow(const Ray& ray, int mirror_depth, double gap,
-              const std::function<void(const Hit&, const Rgb&)>& visit) const;
+              const std::function<void(const Hit&, const Rgb&)>& visit, double near = 0) const;
 
   const Scene& scene() const { return scene_; }
 

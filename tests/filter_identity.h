@@ -26,7 +26,7 @@ inline std::string filter_name(size_t p) {
 /// what lies behind it is black then. Each H_opaque is a hemisphere gather of opaque faces: the
 /// filter code takes no part.
 inline Rgb by_subsets(const Scene& scene, const std::vector<EmittingFace>& all,
-               const std::vector<int>& filters, const Vec3& x, const Vec3& n) {
+                      const std::vector<int>& filters, const Vec3& x, const Vec3& n) {
   std::vector<char> radiates(scene.polygons.size(), 0);
   for (const EmittingFace& f : all) radiates[f.polygon] |= f.exitance != Rgb::Zero();
   Rgb total = Rgb::Zero();

@@ -156,5 +156,36 @@ TEST(MonteCarlo, PassesThroughFiltersWithinFourStandardErrors) {
   EXPECT_EQ(outside, 0) << "of " << compared;
 }
 
+TEST(FilterLocalPass, TheGlassAndMirrorBoxKeepsItsBoundWithZeroViolations) {
+  // data/cornell-glass-mirror (four panes under the light, a wall mirror), solved coarsely:
+  // at 60 points on its faces, |value(T) - value(0)| <= bound(T) for T from 0.01 to 0.5.
+  const test::SolvedScene s = test::solve_coarse("cornell-glass-mirror");
+  const LocalPass pass(s.scene, s.faces, Method::vertex);
+  std::mt19937_64 rng(14);
+  std::uniform_real_distribution<double> u(0, 1);
+  int mirrored = 0, violations = 0;
+  for (int i = 0; i < 60; ++i) {
+    const EmittingFace& f = s.faces[static_cast<size_t>(u(rng) * s.faces.size()) % s.faces.size()];
+    double a = u(rng), b = u(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const Vec3 x =
+        f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]);
+    const Vec3& n = s.scene.polygons[f.polygon].normal;
+    const LocalPassResult exact = pass.gather(x, n, 0);
+    mirrored += exact.mirrored > 0;
+    for (const double tolerance : {0.01, 0.05, 0.2, 0.5}) {
+      const LocalPassResult r = pass.gather(x, n, tolerance);
+      const Rgb error = (r.irradiance - exact.irradiance).cwiseAbs();
+      const Rgb slack = Rgb::Constant(1e-12) + 1e-12 * exact.irradiance;
+      if (((error - r.bound).array() > slack.array()).any() && ++violations <= 3) {
+        ADD_FAILURE() << "T=" << tolerance << " at " << x.transpose() << ": error "
+                      << error.transpose() << " bound " << r.bound.transpose();
+      }
+    }
+  }
+  EXPECT_EQ(violations, 0);
+  EXPECT_GT(mirrored, 20);  // the mirror took part
+}
+
 }  // namespace
 }  // namespace rad

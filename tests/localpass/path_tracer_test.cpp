@@ -26,9 +26,8 @@ using test::SceneBuilder;
     const double tolerance = 4 * e.standard_error[c] + 1e-12;
     if (!(std::abs(e.mean[c] - expected[c]) <= tolerance) ||
         !(e.standard_error[c] <= precision * std::max(expected[c], 1e-12))) {
-      return ::testing::AssertionFailure()
-             << "channel " << c << ": " << e.mean[c] << " +- " << e.standard_error[c]
-             << ", expected " << expected[c];
+      return ::testing::AssertionFailure() << "channel " << c << ": " << e.mean[c] << " +- "
+                                           << e.standard_error[c] << ", expected " << expected[c];
     }
   }
   return ::testing::AssertionSuccess();
@@ -66,8 +65,8 @@ TEST(PathTracer, FurnaceWithAPerfectMirrorFaceIsStillTwo) {
   const PathTracer tracer(b.scene());
   const Vec3 points[] = {{0.5, 0.5, 0}, {0.9, 0.2, 0}};
   for (size_t i = 0; i < 2; ++i) {
-    EXPECT_TRUE(within(tracer.irradiance(points[i], Vec3::UnitZ(), 20000, 10 + i),
-                       Rgb::Constant(2), 0.01))
+    EXPECT_TRUE(
+        within(tracer.irradiance(points[i], Vec3::UnitZ(), 20000, 10 + i), Rgb::Constant(2), 0.01))
         << points[i].transpose();
   }
 }
@@ -101,6 +100,24 @@ TEST(PathTracer, OffAMirrorItAgreesWithTheExactUnfoldedGather) {
     EXPECT_TRUE(within(tracer.irradiance(points[i], Vec3::UnitZ(), 100000, 20 + i), h, 0.02))
         << points[i].transpose();
   }
+}
+
+TEST(PathTracer, AtAWallsFootTheWallIsEdgeOnAsForTheExactGatherers) {
+  // x on the bottom edge of a black wall, lamps on both sides: the wall's plane holds x, so it
+  // neither shows nor hides (the gatherers' convention), and both lamps light x. (Rays started
+  // in that plane used to meet the wall at once: half the light lost.)
+  SceneBuilder b;
+  const int black = b.material("black", Rgb::Zero(), Rgb::Zero());
+  const int lamp = b.material("lamp", Rgb::Zero(), Rgb(1, 2, 3));
+  b.rectangle(-2, 2, -2, 2, 0, false, black);
+  b.polygon({{-1, 0, 0}, {1, 0, 0}, {1, 0, 1}, {-1, 0, 1}}, black);  // the wall, y = 0
+  b.rectangle(-0.5, 0.5, 0.2, 0.8, 1.5, true, lamp);
+  b.rectangle(-0.5, 0.5, -0.9, -0.3, 1.2, true, lamp);
+  const PathTracer tracer(b.scene());
+  const LocalPass exact(b.scene(), faces_from_polygons(b.scene()), Method::vertex);
+  const Vec3 x(0.1, 0, 0);
+  EXPECT_TRUE(within(tracer.irradiance(x, Vec3::UnitZ(), 100000, 30),
+                     exact.gather(x, Vec3::UnitZ(), 0).irradiance, 0.02));
 }
 
 }  // namespace
