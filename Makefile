@@ -53,7 +53,7 @@ demo-glass: build
 	  --width $(GLASS_SIZE) --height $(GLASS_SIZE) -o $(GLASS_OUT)/montecarlo.exr
 	$(RADIOSITY) compare $(GLASS_OUT)/local-pass.exr $(GLASS_OUT)/montecarlo.exr \
 	  -o $(GLASS_OUT)/error-map.exr --max 0.1
-	$(RADIOSITY) render $(GLASS) --method pathtrace --samples 4096 \
+	$(RADIOSITY) render $(GLASS) --method pathtrace --samples 8192 \
 	  --width $(GLASS_SIZE) --height $(GLASS_SIZE) -o $(GLASS_OUT)/pathtrace.exr
 	$(RADIOSITY) compare $(GLASS_OUT)/local-pass.exr $(GLASS_OUT)/pathtrace.exr \
 	  -o $(GLASS_OUT)/error-map-pathtrace.exr --max 0.1

@@ -45,7 +45,7 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
       // is passed (RayCaster::follow), as the exact gatherers see polygons through x edge-on.
       caster_->follow(
           {origin - 0.5 * offset_ * d, d}, faces_scene_.mirror_depth, offset_,
-          [&](const Hit& hit, const Rgb& weight) {
+          [&](const Hit& hit, const Rgb& weight, int) {
             if (hit.front_facing) sum += weight.cwiseProduct(exitance_[hit.polygon]);
           },
           offset_);

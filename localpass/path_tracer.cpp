@@ -6,6 +6,7 @@
 #include <random>
 
 #include "scene/polygon.h"
+#include "scene/polygon_faces.h"
 
 namespace rad {
 namespace {
@@ -23,15 +24,79 @@ Vec3 cosine_direction(const Vec3& n, std::mt19937_64& rng) {
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene)
-    : scene_(scene), caster_(scene), offset_(scene.tolerance().ray_offset) {}
+    : scene_(scene), caster_(scene), offset_(scene.tolerance().ray_offset) {
+  emitter_of_.assign(scene.polygons.size(), -1);
+  for (const EmittingFace& f : faces_from_polygons(scene)) {
+    if (f.exitance == Rgb::Zero()) continue;
+    int& index = emitter_of_[f.polygon];
+    if (index < 0) {
+      index = static_cast<int>(emitters_.size());
+      emitters_.push_back({{}, {}, 0, f.normal, f.exitance});
+    }
+    Emitter& e = emitters_[index];
+    for (size_t i = 1; i + 1 < f.vertices.size(); ++i) {
+      const Vec3 &a = f.vertices[0], &b = f.vertices[i], &c = f.vertices[i + 1];
+      e.triangles.push_back({a, b, c});
+      e.area += 0.5 * (b - a).cross(c - a).norm();
+      e.cumulative.push_back(e.area);
+    }
+  }
+}
+
+double PathTracer::cosine_weight(double cos_p, const Emitter& e, double r, double cos_z) {
+  // Solid-angle densities: the cosine ray's cos_p / pi, the emitter sample's r^2 / (A cos_z).
+  const double p_cosine = cos_p / std::numbers::pi;
+  const double p_light = cos_z > 0 ? r * r / (e.area * cos_z) : INFINITY;
+  return std::isfinite(p_light) ? p_cosine / (p_cosine + p_light) : 0.0;
+}
+
+Rgb PathTracer::straight_emission(const Vec3& p, const Vec3& normal, std::mt19937_64& rng) const {
+  // Next-event estimation: per emitting polygon, one point z uniform on it (density 1 / A), and
+  // M T(p, z) cos_p cos_z A / (pi r^2) estimates the light it sends straight to p, T what the
+  // polygons between pass (0 through an opaque one); its back radiates nothing. Weighted by
+  // the balance heuristic against the cosine rays (which count the rest of it).
+  std::uniform_real_distribution<double> u(0, 1);
+  Rgb h = Rgb::Zero();
+  for (const Emitter& e : emitters_) {
+    const double pick = u(rng) * e.area;
+    const size_t k = std::min<size_t>(
+        std::lower_bound(e.cumulative.begin(), e.cumulative.end(), pick) - e.cumulative.begin(),
+        e.triangles.size() - 1);
+    const auto& [a, b, c] = e.triangles[k];
+    double s = u(rng), t = u(rng);
+    if (s + t > 1) s = 1 - s, t = 1 - t;
+    const Vec3 z = a + s * (b - a) + t * (c - a);
+    const Vec3 to = z - p;
+    const double r2 = to.squaredNorm();
+    if (!(r2 > 0)) continue;
+    const double r = std::sqrt(r2);
+    const Vec3 w = to / r;
+    const double cos_p = normal.dot(w), cos_z = -e.normal.dot(w);
+    if (!(cos_p > 0 && cos_z > 0)) continue;
+    // From off the surface and half an offset back, skipping what lies that near p (polygons
+    // through p are edge-on, as for the exact gatherers) and stopping short of the emitter.
+    const Vec3 origin = p + offset_ * normal - 0.5 * offset_ * w;
+    const Vec3 leg = z - origin;
+    const double distance = leg.norm();
+    const Rgb passed = caster_.transmittance({origin, leg / distance}, 1.5 * offset_,
+                                             distance * (1 - 1e-9) - offset_, offset_);
+    if (passed == Rgb::Zero()) continue;
+    const double weight = 1 - cosine_weight(cos_p, e, r, cos_z);
+    h += (weight * e.area * cos_p * cos_z / (std::numbers::pi * r2)) *
+         e.exitance.cwiseProduct(passed);
+  }
+  return h;
+}
 
 PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths,
                                          uint64_t seed) const {
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + 7);
   std::uniform_real_distribution<double> u(0, 1);
-  // One sample of H at (p, normal) after `bounces` diffuse bounces.
+  // One sample of H at (p, normal) after `bounces` diffuse bounces: the emitters seen straight
+  // (through filters) by a point on each, and by one cosine-weighted ray, the two combined by
+  // their weights; the rest by that ray alone.
   const auto sample = [&](const auto& self, const Vec3& p, const Vec3& normal, int bounces) -> Rgb {
-    Rgb h = Rgb::Zero();
+    Rgb h = straight_emission(p, normal, rng);
     const Vec3 d = cosine_direction(normal, rng);
     // Off the surface along its normal, and half that back along the ray, so that no ray
     // starts inside a plane (at a point on an edge the lift along the normal stays in the
@@ -39,10 +104,15 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
     // gatherers see polygons through x edge-on.
     caster_.follow(
         {p + offset_ * normal - 0.5 * offset_ * d, d}, scene_.mirror_depth, offset_,
-        [&](const Hit& hit, const Rgb& weight) {
+        [&](const Hit& hit, const Rgb& weight, int reflections) {
           if (!hit.front_facing) return;
           const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];
           Rgb b = m.emission;
+          const int emitter = emitter_of_[hit.polygon];
+          if (reflections == 0 && emitter >= 0) {  // seen straight: shared with the samples
+            const Emitter& e = emitters_[emitter];
+            b *= cosine_weight(normal.dot(d), e, hit.distance, -e.normal.dot(d));
+          }
           if (m.reflectance.maxCoeff() > 0) {
             const double keep = bounces < 2 ? 1.0 : std::min(0.95, m.reflectance.maxCoeff());
             if (u(rng) < keep) {

@@ -35,7 +35,7 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
                         for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
                           const size_t index = static_cast<size_t>(y) * width + x;
                           caster.follow(camera.ray(x + 0.5, y + 0.5), scene.mirror_depth, gap,
-                                        [&](const Hit& hit, const Rgb& weight) {
+                                        [&](const Hit& hit, const Rgb& weight, int) {
                                           if (!hit.front_facing) return;
                                           shade(hit, weight, index, out);
                                           out.surface[index] = 1;

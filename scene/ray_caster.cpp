@@ -151,7 +151,7 @@ Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double 
 }
 
 void RayCaster::follow(const Ray& ray, int mirror_depth, double gap,
-                       const std::function<void(const Hit&, const Rgb&)>& visit,
+                       const std::function<void(const Hit&, const Rgb&, int)>& visit,
                        double near) const {
   struct Branch {
     Ray ray;
@@ -171,7 +171,7 @@ void RayCaster::follow(const Ray& ray, int mirror_depth, double gap,
         b.t_min = std::max(hit->distance, b.t_min) + gap;
         continue;
       }
-      visit(*hit, b.weight);
+      visit(*hit, b.weight, b.reflections);
       const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
       if (hit->front_facing && m.is_mirror() && b.reflections < mirror_depth) {
         const Vec3 d = b.ray.direction - 2 * hit->normal.dot(b.ray.direction) * hit->normal;

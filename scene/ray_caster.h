@@ -55,8 +55,9 @@ class RayCaster {
   /// inside a plane), they are polygons whose plane holds the point (an edge, a wall's foot),
   /// which the exact gatherers see edge-on: no solid angle, no occlusion. Without filters and
   /// mirrors: the first hit alone, with weight 1.
+  /// visit(hit, weight, reflections): `reflections` mirrors lie on the way to the hit.
   void follow(const Ray& ray, int mirror_depth, double gap,
-              const std::function<void(const Hit&, const Rgb&)>& visit, double near = 0) const;
+              const std::function<void(const Hit&, const Rgb&, int)>& visit, double near = 0) const;
 
   const Scene& scene() const { return scene_; }
 
