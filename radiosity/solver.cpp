@@ -113,38 +113,49 @@ class Shooter {
     if (!(ff > 0)) return Rgb::Zero();
     Rgb specular = Rgb::Ones();
     for (const int j : chain) specular = specular.cwiseProduct(pieces_[j].specular);
+    const Rgb visible = mean_over_samples(shooter, key, [&](const Vec3& y) {
+      Vec3 from = x, target = image_of(y);
+      Rgb passed = Rgb::Ones();
+      for (const int j : chain) {
+        const MirrorPiece& m = pieces_[j];
+        const double hf = m.height(from), ht = m.height(target);
+        if (!(hf > 0 && ht < 0)) {
+          passed = Rgb::Zero();
+          break;
+        }
+        const Vec3 p = from + (hf / (hf - ht)) * (target - from);
+        if (!in_outline(m, p)) {
+          passed = Rgb::Zero();
+          break;
+        }
+        passed = passed.cwiseProduct(leg(from, p));
+        from = p;
+        target = m.reflect(target);
+      }
+      if (passed != Rgb::Zero()) passed = passed.cwiseProduct(leg(from, y));
+      return passed;
+    });
+    return specular.cwiseProduct(ff * visible);
+  }
+
+  /// The mean of pass(y) over the shadow-ray samples y of the shooter: side^2 strata of its
+  /// parameter square, jittered from the stream `key` selects.
+  template <typename Pass>
+  Rgb mean_over_samples(const Patch& shooter, uint64_t key, const Pass& pass) const {
     uint64_t state = splitmix64(seed_ ^ splitmix64(key));
-    Rgb visible = Rgb::Zero();
+    Rgb sum = Rgb::Zero();
     for (int a = 0; a < side_; ++a) {
       for (int b = 0; b < side_; ++b) {
         const double u = (a + next_uniform(state)) / side_, v = (b + next_uniform(state)) / side_;
-        const Vec3 y = patch_point(shooter, u, v);
-        Vec3 from = x, target = image_of(y);
-        Rgb passed = Rgb::Ones();
-        for (const int j : chain) {
-          const MirrorPiece& m = pieces_[j];
-          const double hf = m.height(from), ht = m.height(target);
-          if (!(hf > 0 && ht < 0)) {
-            passed = Rgb::Zero();
-            break;
-          }
-          const Vec3 p = from + (hf / (hf - ht)) * (target - from);
-          if (!in_outline(m, p)) {
-            passed = Rgb::Zero();
-            break;
-          }
-          passed = passed.cwiseProduct(leg(from, p));
-          from = p;
-          target = m.reflect(target);
-        }
-        if (passed != Rgb::Zero()) passed = passed.cwiseProduct(leg(from, y));
-        visible += passed;
+        sum += pass(patch_point(shooter, u, v));
       }
     }
-    return specular.cwiseProduct(ff * visible / (side_ * side_));
+    return sum / (side_ * side_);
   }
 
-  /// What passes between two points (not counting surfaces within epsilon of either end).
+  /// What passes between two points (not counting surfaces within epsilon of either end; the
+  /// far end with a relative margin too, for grazing rays, whose float hit distance is least
+  /// precise).
   Rgb leg(const Vec3& a, const Vec3& b) const {
     const Vec3 d = b - a;
     const double distance = d.norm();
@@ -165,25 +176,7 @@ class Shooter {
       ++unhidden_;
       return Rgb::Constant(ff);
     }
-    uint64_t state = splitmix64(seed_ ^ splitmix64(key));
-    Rgb visible = Rgb::Zero();
-    for (int a = 0; a < side_; ++a) {
-      for (int b = 0; b < side_; ++b) {
-        const double u = (a + next_uniform(state)) / side_, v = (b + next_uniform(state)) / side_;
-        const Vec3 y = patch_point(shooter, u, v);
-        const Vec3 d = y - x;
-        const double distance = d.norm();
-        if (!(distance > 2 * epsilon_)) {
-          visible += Rgb::Ones();
-          continue;
-        }
-        // Stop short of the shooter: a relative margin for grazing rays, whose float hit
-        // distance is least precise.
-        const double t_max = distance * (1 - 1e-6) - epsilon_;
-        visible += caster_.transmittance({x, d / distance}, epsilon_, t_max, epsilon_);
-      }
-    }
-    return ff * visible / (side_ * side_);
+    return ff * mean_over_samples(shooter, key, [&](const Vec3& y) { return leg(x, y); });
   }
 
   const RayCaster& caster_;

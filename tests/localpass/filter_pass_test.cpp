@@ -10,6 +10,7 @@
 #include "localpass/monte_carlo.h"
 #include "scene/error.h"
 #include "tests/coarse_solution.h"
+#include "tests/rgb_checks.h"
 #include "vertex/vertex_tracer.h"
 
 namespace rad {
@@ -40,24 +41,8 @@ const test::SolvedScene& glass_blocks() {
   return s;
 }
 
-struct SurfacePoint {
-  Vec3 x, n;
-};
-
-std::vector<SurfacePoint> surface_points(int count, uint64_t seed) {
-  const test::SolvedScene& s = glass_blocks();
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<SurfacePoint> points;
-  for (int i = 0; i < count; ++i) {
-    const EmittingFace& f = s.faces[static_cast<size_t>(u(rng) * s.faces.size()) % s.faces.size()];
-    double a = u(rng), b = u(rng);
-    if (a + b > 1) a = 1 - a, b = 1 - b;
-    points.push_back(
-        {f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]),
-         s.scene.polygons[f.polygon].normal});
-  }
-  return points;
+std::vector<test::FacePoint> surface_points(int count, uint64_t seed) {
+  return test::face_points(glass_blocks().scene, glass_blocks().faces, count, seed);
 }
 
 TEST(FilterLocalPass, ToleranceZeroIsThePlainVertexGather) {
@@ -68,7 +53,7 @@ TEST(FilterLocalPass, ToleranceZeroIsThePlainVertexGather) {
   for (EmittingFace& f : opaque_faces) f.transmittance = Rgb::Zero();
   const VertexTracer opaque(s.scene, opaque_faces);
   int brighter = 0;
-  for (const SurfacePoint& p : surface_points(60, 11)) {
+  for (const test::FacePoint& p : surface_points(60, 11)) {
     const LocalPassResult r = pass.gather(p.x, p.n, 0);
     const Rgb reference = plain.gather(p.x, p.n).irradiance;
     EXPECT_LE((r.irradiance - reference).cwiseAbs().maxCoeff(), 1e-9 * reference.maxCoeff())
@@ -90,9 +75,9 @@ TEST(FilterLocalPass, CertifiedBoundHoldsWithZeroViolations) {
   // a filter makes their upper ends too low, and this test fails.)
   const test::SolvedScene& s = glass_blocks();
   const LocalPass pass(s.scene, s.faces, Method::vertex);
-  const std::vector<SurfacePoint> points = surface_points(100, 12);
+  const std::vector<test::FacePoint> points = surface_points(100, 12);
   std::vector<Rgb> exact;
-  for (const SurfacePoint& p : points) exact.push_back(pass.gather(p.x, p.n, 0).irradiance);
+  for (const test::FacePoint& p : points) exact.push_back(pass.gather(p.x, p.n, 0).irradiance);
   for (const double tolerance : {0.01, 0.05, 0.2, 0.5}) {
     int violations = 0, stopped_late = 0;
     for (size_t i = 0; i < points.size(); ++i) {
@@ -130,20 +115,12 @@ TEST(MonteCarlo, PassesThroughFiltersWithinFourStandardErrors) {
   const MonteCarloGatherer mc(s.scene, s.faces);
   const VertexTracer exact(s.scene, s.faces);
   int outside = 0, compared = 0;
-  const std::vector<SurfacePoint> points = surface_points(25, 13);
+  const std::vector<test::FacePoint> points = surface_points(25, 13);
   for (size_t i = 0; i < points.size(); ++i) {
-    const SurfacePoint& p = points[i];
-    constexpr int kSeeds = 8;
-    Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
-    for (int k = 0; k < kSeeds; ++k) {
-      const Rgb m = mc.gather(p.x, p.n, 4096, 1000 * i + k);
-      sum += m;
-      sum2 += m.cwiseProduct(m);
-    }
-    const Rgb mean = sum / kSeeds;
-    const Rgb variance =
-        ((sum2 / kSeeds - mean.cwiseProduct(mean)) * kSeeds / (kSeeds - 1)).cwiseMax(0);
-    const Rgb se = (variance / kSeeds).cwiseSqrt();
+    const test::FacePoint& p = points[i];
+    const test::SampledMean m =
+        test::sampled_mean(8, [&](int k) { return mc.gather(p.x, p.n, 4096, 1000 * i + k); });
+    const Rgb &mean = m.mean, &se = m.standard_error;
     const Rgb h = exact.gather(p.x, p.n).irradiance;
     for (int c = 0; c < 3; ++c) {
       ++compared;
@@ -161,16 +138,8 @@ TEST(FilterLocalPass, TheGlassAndMirrorBoxKeepsItsBoundWithZeroViolations) {
   // at 60 points on its faces, |value(T) - value(0)| <= bound(T) for T from 0.01 to 0.5.
   const test::SolvedScene s = test::solve_coarse("cornell-glass-mirror");
   const LocalPass pass(s.scene, s.faces, Method::vertex);
-  std::mt19937_64 rng(14);
-  std::uniform_real_distribution<double> u(0, 1);
   int mirrored = 0, violations = 0;
-  for (int i = 0; i < 60; ++i) {
-    const EmittingFace& f = s.faces[static_cast<size_t>(u(rng) * s.faces.size()) % s.faces.size()];
-    double a = u(rng), b = u(rng);
-    if (a + b > 1) a = 1 - a, b = 1 - b;
-    const Vec3 x =
-        f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]);
-    const Vec3& n = s.scene.polygons[f.polygon].normal;
+  for (const auto& [x, n] : test::face_points(s.scene, s.faces, 60, 14)) {
     const LocalPassResult exact = pass.gather(x, n, 0);
     mirrored += exact.mirrored > 0;
     for (const double tolerance : {0.01, 0.05, 0.2, 0.5}) {

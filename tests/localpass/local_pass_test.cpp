@@ -12,6 +12,7 @@
 #include "render/irradiance_render.h"
 #include "scene/ray_caster.h"
 #include "tests/coarse_solution.h"
+#include "tests/rgb_checks.h"
 
 namespace rad {
 namespace {
@@ -19,25 +20,11 @@ namespace {
 using CornellSolution = test::SolvedScene;
 const CornellSolution& cornell_solution() { return test::coarse_cornell(); }
 
-struct SurfacePoint {
-  Vec3 x, n;
-};
+using SurfacePoint = test::FacePoint;
 
-/// Seeded points on the faces (area-blind: every face alike), as primary hits would be.
+/// Seeded points on the faces, as primary hits would be.
 std::vector<SurfacePoint> surface_points(int count, uint64_t seed) {
-  const CornellSolution& s = cornell_solution();
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<SurfacePoint> points;
-  for (int i = 0; i < count; ++i) {
-    const EmittingFace& f = s.faces[static_cast<size_t>(u(rng) * s.faces.size()) % s.faces.size()];
-    double a = u(rng), b = u(rng);
-    if (a + b > 1) a = 1 - a, b = 1 - b;
-    points.push_back(
-        {f.vertices[0] + a * (f.vertices[1] - f.vertices[0]) + b * (f.vertices[2] - f.vertices[0]),
-         s.scene.polygons[f.polygon].normal});
-  }
-  return points;
+  return test::face_points(cornell_solution().scene, cornell_solution().faces, count, seed);
 }
 
 TEST(LocalPass, ToleranceZeroIsTheExactGatherWithNoBound) {

@@ -16,27 +16,17 @@
 #include "scene/polygon_validation.h"
 #include "scene/ray_caster.h"
 #include "tests/closed_forms.h"
+#include "tests/rgb_checks.h"
 #include "tests/scene_builder.h"
 #include "vertex/vertex_tracer.h"
 
 namespace rad {
 namespace {
 
+using test::agree;
 using test::SceneBuilder;
 
 constexpr Method kExact[] = {Method::hemisphere, Method::vertex};
-
-/// Per channel within `relative` of the larger, or 1e-12 absolute.
-::testing::AssertionResult agree(const Rgb& got, const Rgb& want, double relative = 1e-9) {
-  for (int c = 0; c < 3; ++c) {
-    const double tolerance = std::max(relative * std::abs(want[c]), 1e-12);
-    if (!(std::abs(got[c] - want[c]) <= tolerance)) {
-      return ::testing::AssertionFailure() << "channel " << c << ": got " << got[c] << " want "
-                                           << want[c] << " (difference " << got[c] - want[c] << ")";
-    }
-  }
-  return ::testing::AssertionSuccess();
-}
 
 /// Direct light at x, with the mirrors to `depth` (the polygons radiate their emission).
 LocalPassResult direct(const Scene& scene, Method method, const Vec3& x, const Vec3& n,
@@ -305,16 +295,9 @@ TEST(Mirror, MonteCarloRaysOffTheMirrorAgreeWithinFourStandardErrors) {
   for (int i = 0; i < 20; ++i) {
     const Vec3 x(ux(rng), uy(rng), 0);
     const Rgb h = direct(room, Method::vertex, x, Vec3::UnitZ()).irradiance;
-    constexpr int kSeeds = 8;
-    Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
-    for (int k = 0; k < kSeeds; ++k) {
-      const Rgb m = mc.gather(x, Vec3::UnitZ(), 4096, 100 * i + k);
-      sum += m;
-      sum2 += m.cwiseProduct(m);
-    }
-    const Rgb mean = sum / kSeeds;
-    const Rgb se =
-        ((sum2 / kSeeds - mean.cwiseProduct(mean)).cwiseMax(0) / (kSeeds - 1)).cwiseSqrt();
+    const test::SampledMean m = test::sampled_mean(
+        8, [&](int k) { return mc.gather(x, Vec3::UnitZ(), 4096, 100 * i + k); });
+    const Rgb &mean = m.mean, &se = m.standard_error;
     for (int c = 0; c < 3; ++c) {
       if (std::abs(mean[c] - h[c]) > 4 * se[c] + 1e-9 * h[c] && ++outside <= 3) {
         ADD_FAILURE() << "at " << x.transpose() << " channel " << c << ": Monte Carlo " << mean[c]

@@ -9,12 +9,14 @@
 #include "tests/closed_forms.h"
 #include "tests/filter_identity.h"
 #include "tests/random_scenes.h"
+#include "tests/rgb_checks.h"
 #include "tests/scene_builder.h"
 #include "vertex/vertex_tracer.h"
 
 namespace rad {
 namespace {
 
+using test::agree;
 using test::by_subsets;
 using test::make_filters;
 using test::random_transmittance;
@@ -29,18 +31,6 @@ std::string numbered(const char* prefix, size_t i) {
 
 Rgb traced(const Scene& scene, const Vec3& x, const Vec3& n) {
   return VertexTracer(scene).gather(x, n).irradiance;
-}
-
-/// Per channel within 1e-9 relative (of the larger) or 1e-12 absolute.
-::testing::AssertionResult agree(const Rgb& got, const Rgb& want, double relative = 1e-9) {
-  for (int c = 0; c < 3; ++c) {
-    const double tolerance = std::max(relative * std::abs(want[c]), 1e-12);
-    if (!(std::abs(got[c] - want[c]) <= tolerance)) {
-      return ::testing::AssertionFailure() << "channel " << c << ": got " << got[c] << " want "
-                                           << want[c] << " (difference " << got[c] - want[c] << ")";
-    }
-  }
-  return ::testing::AssertionSuccess();
 }
 
 /// Each face split into triangles from its centroid, each radiating its own random exitance:
