@@ -50,8 +50,9 @@ struct FacePoint {
 };
 /// Seeded points on the faces (area-blind: every face alike), with their polygons' normals, as
 /// primary hits would be.
-inline std::vector<FacePoint> face_points(const Scene& scene, const std::vector<EmittingFace>& faces,
-                                          int count, uint64_t seed) {
+inline std::vector<FacePoint> face_points(const Scene& scene,
+                                          const std::vector<EmittingFace>& faces, int count,
+                                          uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<FacePoint> points;
