@@ -42,11 +42,39 @@ struct ProbeOptions {
   std::string solution;  ///< empty: direct lighting only
   double tolerance = 0;
   int samples = 64;
-  std::string output;  ///< empty: stdout
+  double target_error = 0;  ///< pathtrace: batches until this relative standard error
+  std::string output;       ///< empty: stdout
   int threads = 0;
 };
 
+/// The batches of a reference: at most this many of --samples paths each.
+constexpr int max_batches = 4096;
+
+/// H at a point from batches of `paths` paths, batch b seeded by (point, b), until every
+/// channel's standard error is at most `target` of its mean (0: one batch) or max_batches. The
+/// batches are independent and of equal size, so the mean of their means is the mean of all the
+/// paths and its standard error is sqrt(sum se_b^2) / batches. The first batch is the plain
+/// run's, and the stopping rule looks only at this point's batches: the result does not depend
+/// on threads.
+PathTraceEstimate traced_to_target(const PathTracer& tracer, const ProbePoint& p, int paths,
+                                   double target, size_t point) {
+  Rgb sum = Rgb::Zero(), variance = Rgb::Zero();
+  for (int batch = 1;; ++batch) {
+    const uint64_t seed = point + (static_cast<uint64_t>(batch - 1) << 32);
+    const PathTraceEstimate e = tracer.irradiance(p.x, p.n, paths, seed);
+    sum += e.mean;
+    variance += e.standard_error.cwiseAbs2();
+    const Rgb mean = sum / batch;
+    const Rgb error = variance.cwiseSqrt() / batch;
+    bool met = true;
+    for (int c = 0; c < 3; ++c) met = met && error[c] <= target * std::abs(mean[c]);
+    if (target <= 0 || met || batch == max_batches) return {mean, error};
+  }
+}
+
 void run_probe(const ProbeOptions& o) {
+  if (o.target_error > 0 && o.method != "pathtrace")
+    throw InputError("--target-error is for --method pathtrace");
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
   const Scene scene = load_scene_reporting(o.scene);
@@ -63,7 +91,8 @@ void run_probe(const ProbeOptions& o) {
     path_tracer.emplace(scene);
     standard_error.assign(points.size(), Rgb::Zero());
     gather = [&](size_t i) {
-      const PathTraceEstimate e = path_tracer->irradiance(points[i].x, points[i].n, o.samples, i);
+      const PathTraceEstimate e =
+          traced_to_target(*path_tracer, points[i], o.samples, o.target_error, i);
       irradiance[i] = e.mean;
       standard_error[i] = e.standard_error;
       bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
@@ -137,7 +166,11 @@ void run_probe(const ProbeOptions& o) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string what =
-      path_tracer ? "the scene path-traced, " + std::to_string(o.samples) + " paths a point"
+      path_tracer
+          ? "the scene path-traced, " + std::to_string(o.samples) + " paths a point" +
+                (o.target_error > 0
+                     ? " a batch, to a relative standard error of " + std::to_string(o.target_error)
+                     : "")
       : o.solution.empty() ? "direct only"
                            : "from " + o.solution + " at tolerance " + std::to_string(o.tolerance);
   std::cerr << "probe: " << points.size() << " points, " << o.method << ", " << what << ", "
@@ -182,6 +215,12 @@ void add_probe_command(CLI::App& app, Run& run) {
       "With --solution: stop once the certified error bound is at most this fraction of the "
       "value (0: exact); the bound column reports it");
   add_samples_option(sub, &o->samples, "point");
+  sub->add_option("--target-error", o->target_error,
+                  "pathtrace: trace batches of --samples paths until every channel's standard "
+                  "error is at most this fraction of its value (at most " +
+                      std::to_string(max_batches) + " batches; 0: one batch)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   sub->add_option("-o,--output", o->output,
                   "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
   add_threads_option(sub, &o->threads);

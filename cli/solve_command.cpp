@@ -68,21 +68,21 @@ void add_solve_command(CLI::App& app, Run& run) {
       "solve",
       "Mesh the scene and run progressive refinement radiosity; write the solution (.vtp).");
   sub->footer(
-      "Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) in RGB: polygons "
-      "are\n"
-      "cut into patches (shooters) of edge --patch-size x the scene diagonal, each "
-      "4^--element-levels\n"
-      "elements (receivers); the patch with the most unshot power shoots, each element receiving\n"
-      "Delta B x FF x V at its centroid (FF: Lambert's formula; V: --visibility-samples jittered "
-      "shadow\n"
-      "rays); elements are split where linear interpolation misses the received radiosity by more "
-      "than\n"
-      "--refine-threshold, during shots and in --refine-passes passes afterwards. Stops when the "
-      "unshot\n"
-      "power is below --unshot of the emitted. Prints a summary and the energy ledger (emitted =\n"
-      "absorbed + escaped + unshot) on stderr. Bitwise deterministic for a seed, whatever the "
-      "thread\n"
-      "count. The algorithm: docs/algorithms.md.");
+      "Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) in RGB: polygons\n"
+      "are cut along their contact lines (a block's foot on a floor), then into patches "
+      "(shooters)\n"
+      "of edge --patch-size x the scene diagonal, each 4^--element-levels elements (receivers);\n"
+      "what lies inside closed objects is buried and takes no part. The patch with the most\n"
+      "unshot power shoots, each element receiving Delta B x FF x V at its centroid (FF: "
+      "Lambert's\n"
+      "formula; V: --visibility-samples jittered shadow rays; each pair measured once for all\n"
+      "shots); elements near the shooter receive it piece by piece. Elements are split where\n"
+      "linear interpolation misses the received radiosity by more than --refine-threshold (near\n"
+      "a contact or concave edge: where any corner does), during shots and in --refine-passes\n"
+      "passes afterwards. Stops when the unshot power is below --unshot of the emitted. Prints a\n"
+      "summary and the energy ledger (emitted = absorbed + escaped + unshot) on stderr. Bitwise\n"
+      "deterministic for a seed, whatever the thread count. Accuracy against time:\n"
+      "bench/results/global_accuracy.md. The algorithm: docs/algorithms.md.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
   sub->add_option("--patch-size", s.patch_size,

@@ -3,17 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "radiosity/contact_cuts.h"
 #include "scene/polygon.h"
 
 namespace rad {
 namespace {
 
-bool is_convex_quad(const Polygon& p) {
-  if (p.vertices.size() != 4) return false;
+bool is_convex_quad(const std::vector<Vec3>& v, const Vec3& normal) {
+  if (v.size() != 4) return false;
   for (int i = 0; i < 4; ++i) {
-    const Vec3 e0 = p.vertices[(i + 1) % 4] - p.vertices[i];
-    const Vec3 e1 = p.vertices[(i + 2) % 4] - p.vertices[(i + 1) % 4];
-    if (!(e0.cross(e1).dot(p.normal) > 0)) return false;
+    const Vec3 e0 = v[(i + 1) % 4] - v[i];
+    const Vec3 e1 = v[(i + 2) % 4] - v[(i + 1) % 4];
+    if (!(e0.cross(e1).dot(normal) > 0)) return false;
   }
   return true;
 }
@@ -32,8 +33,9 @@ Patch make_patch(int polygon, const Vec3& normal, std::vector<Vec3> corners) {
   return patch;
 }
 
-void grid_patches(const Polygon& p, int polygon, double size, std::vector<Patch>& out) {
-  const Vec3 &a = p.vertices[0], &b = p.vertices[1], &c = p.vertices[2], &d = p.vertices[3];
+void grid_patches(const std::vector<Vec3>& corners, const Vec3& normal, int polygon, double size,
+                  std::vector<Patch>& out) {
+  const Vec3 &a = corners[0], &b = corners[1], &c = corners[2], &d = corners[3];
   const int nu = divisions(std::max((b - a).norm(), (c - d).norm()), size);
   const int nv = divisions(std::max((d - a).norm(), (c - b).norm()), size);
   // Bilinear map (u along a->b, v along a->d); points of a planar quad stay in its plane.
@@ -44,7 +46,7 @@ void grid_patches(const Polygon& p, int polygon, double size, std::vector<Patch>
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i < nu; ++i) {
       out.push_back(
-          make_patch(polygon, p.normal, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}));
+          make_patch(polygon, normal, {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}));
     }
   }
 }
@@ -93,8 +95,20 @@ std::vector<Patch> make_patches(const Scene& scene, double patch_size) {
   for (size_t i = 0; i < scene.polygons.size(); ++i) {
     const Polygon& p = scene.polygons[i];
     const int id = static_cast<int>(i);
-    if (is_convex_quad(p)) {
-      grid_patches(p, id, patch_size, patches);
+    const std::vector<std::vector<Vec3>> pieces = contact_pieces(scene, id);
+    if (!pieces.empty()) {
+      // Cut along contact lines: each convex piece meshed alone (a quad as a grid, any other
+      // piece as a fan of triangles), so no patch straddles a line.
+      for (const std::vector<Vec3>& piece : pieces) {
+        if (is_convex_quad(piece, p.normal)) {
+          grid_patches(piece, p.normal, id, patch_size, patches);
+        } else {
+          for (size_t k = 1; k + 1 < piece.size(); ++k)
+            triangle_patches(piece[0], piece[k], piece[k + 1], p.normal, id, patch_size, patches);
+        }
+      }
+    } else if (is_convex_quad(p.vertices, p.normal)) {
+      grid_patches(p.vertices, p.normal, id, patch_size, patches);
     } else if (p.vertices.size() == 3) {
       triangle_patches(p.vertices[0], p.vertices[1], p.vertices[2], p.normal, id, patch_size,
                        patches);

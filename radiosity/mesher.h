@@ -10,7 +10,9 @@ namespace rad {
 /// Subdivides every scene polygon into patches no longer than `patch_size` (scene units) along
 /// an edge: a convex quad becomes an nu x nv grid (bilinear, so sub-quads stay in its plane);
 /// a triangle is cut into k^2 triangles; any other polygon is triangulated first (ear clipping)
-/// and each triangle cut the same way. Patches keep the parent's orientation and normal.
+/// and each triangle cut the same way. First, polygons are cut along their contact lines
+/// (radiosity/contact_cuts.h) and each piece meshed alone. Patches keep the parent's orientation
+/// and normal.
 std::vector<Patch> make_patches(const Scene& scene, double patch_size);
 
 /// Area and area centroid of a planar 3- or 4-gon.

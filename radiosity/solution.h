@@ -13,7 +13,8 @@ namespace rad {
 /// any scene scale.
 struct SolverSettings {
   /// Target patch edge length. Quads become near-square grids, other polygons are triangulated
-  /// and each triangle subdivided uniformly. 0.08 gives ~400 patches in the Cornell box.
+  /// and each triangle subdivided uniformly. 0.08 gives ~800 patches in the Cornell box (its
+  /// floor cut along the blocks' feet).
   double patch_size = 0.08;
   /// Each patch starts as 4^element_levels elements.
   int element_levels = 1;
@@ -21,8 +22,9 @@ struct SolverSettings {
   /// (B_ref: the scene's mean radiosity estimate, emitted power / total area /
   /// (1 - mean reflectance)). During a shot, an element is split in four when linear
   /// interpolation from its corners misses the radiosity it receives at its centre by more than
-  /// refine_threshold * clamp(B); after convergence, when it differs from a neighbour by more.
-  /// 0 disables refinement.
+  /// refine_threshold * clamp(B) (near a contact or a concave edge: when any corner differs
+  /// from the centre by more); after convergence, when it misses the plane through its
+  /// neighbours by more. 0 disables refinement.
   double refine_threshold = 0.05;
   /// After convergence, up to this many passes split elements whose radiosity differs from a
   /// mesh neighbour's by more than the same limit (children re-gather exactly), then shoot on.

@@ -7,189 +7,22 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <tuple>
 
 #include "geometry/lambert.h"
 #include "geometry/plane.h"
+#include "radiosity/form_factor_store.h"
 #include "radiosity/mesher.h"
+#include "radiosity/near_field.h"
 #include "radiosity/patch_mesh.h"
 #include "radiosity/random_stream.h"
-#include "radiosity/shadow_culling.h"
+#include "radiosity/shooter.h"
 #include "scene/error.h"
-#include "scene/mirror_pieces.h"
 
 namespace rad {
 namespace {
-
-/// A point of a patch at parametric (u, v) in [0, 1]^2: bilinear on quads; on triangles the
-/// square is folded onto the triangle (area-preserving up to the fold).
-Vec3 patch_point(const Patch& p, double u, double v) {
-  const auto& c = p.corners;
-  if (c.size() == 4)
-    return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
-  if (u + v > 1) u = 1 - u, v = 1 - v;
-  return (1 - u - v) * c[0] + u * c[1] + v * c[2];
-}
-
-struct Sphere {
-  Vec3 centre;
-  double radius;
-};
-Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
-  double r = 0;
-  for (const Vec3& c : corners) r = std::max(r, (c - centre).norm());
-  return {centre, r};
-}
-
-/// True when p (in the piece's plane) lies in its outline (convex, counter-clockwise).
-bool in_outline(const MirrorPiece& m, const Vec3& p) {
-  const size_t k = m.outline.size();
-  for (size_t i = 0; i < k; ++i) {
-    const Vec3& a = m.outline[i];
-    const Vec3& b = m.outline[(i + 1) % k];
-    if ((b - a).cross(p - a).dot(m.normal) < 0) return false;
-  }
-  return true;
-}
-
-class Shooter {
- public:
-  Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
-      : caster_(caster),
-        culling_(caster.scene(), epsilon),
-        epsilon_(epsilon),
-        cull_(settings.shaft_culling) {
-    side_ = std::max(
-        1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
-    seed_ = settings.seed;
-    const Scene& scene = caster.scene();
-    in_plane_ = scene.tolerance().in_plane;
-    pieces_ = mirror_pieces(scene);
-    chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
-  }
-
-  /// Form factor from a receiver point (on polygon `polygon`) to the patch, times the mean
-  /// over the shadow rays of what passes along each (0 or 1 through opaque polygons, the
-  /// product of the transmittances through filters, 000 §2.2), per channel; plus the same
-  /// from the patch's images in every chain of mirrors (000 §3: the image method), times the
-  /// chain's specular reflectance. `key` selects the jitter stream.
-  Rgb visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
-                          uint64_t key) const {
-    Rgb ff = direct_form_factor(x, n, polygon, shooter, key);
-    for (size_t c = 0; c < chains_.size(); ++c)
-      ff += image_form_factor(x, n, shooter, chains_[c], splitmix64(key ^ (c + 1)));
-    return ff;
-  }
-
-  /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
-  std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
-
- private:
-  /// The image of the shooter seen from x along the chain m_1 .. m_k (x -> m_1 -> ... -> m_k
-  /// -> shooter): y^ = R_1 ... R_k y. A sample ray runs from x to y^, must cross each m_j's
-  /// plane inside its outline in turn (reflected at each), and passes the blockers of every
-  /// leg (x -> p_1, p_1 -> p_2, ..., p_k -> y) with their transmittances.
-  Rgb image_form_factor(const Vec3& x, const Vec3& n, const Patch& shooter,
-                        const std::vector<int>& chain, uint64_t key) const {
-    const MirrorPiece& first = pieces_[chain.front()];
-    const MirrorPiece& last = pieces_[chain.back()];
-    if (!(first.height(x) > in_plane_)) return Rgb::Zero();  // x must face the first mirror
-    bool in_front = false;                                   // and the shooter the last
-    for (const Vec3& c : shooter.corners) in_front = in_front || last.height(c) > in_plane_;
-    if (!in_front) return Rgb::Zero();
-    const auto image_of = [&](Vec3 y) {
-      for (auto j = chain.rbegin(); j != chain.rend(); ++j) y = pieces_[*j].reflect(y);
-      return y;
-    };
-    std::vector<Vec3> corners;
-    for (const Vec3& c : shooter.corners) corners.push_back(image_of(c));
-    Vec3 normal = shooter.normal;
-    for (auto j = chain.rbegin(); j != chain.rend(); ++j)
-      normal = pieces_[*j].reflect_direction(normal);
-    if (chain.size() % 2 == 1) std::reverse(corners.begin(), corners.end());
-    if (!is_in_front_of(x, corners[0], normal)) return Rgb::Zero();
-    const double ff = point_polygon_form_factor(x, n, corners);
-    if (!(ff > 0)) return Rgb::Zero();
-    Rgb specular = Rgb::Ones();
-    for (const int j : chain) specular = specular.cwiseProduct(pieces_[j].specular);
-    const Rgb visible = mean_over_samples(shooter, key, [&](const Vec3& y) {
-      Vec3 from = x, target = image_of(y);
-      Rgb passed = Rgb::Ones();
-      for (const int j : chain) {
-        const MirrorPiece& m = pieces_[j];
-        const double hf = m.height(from), ht = m.height(target);
-        if (!(hf > 0 && ht < 0)) {
-          passed = Rgb::Zero();
-          break;
-        }
-        const Vec3 p = from + (hf / (hf - ht)) * (target - from);
-        if (!in_outline(m, p)) {
-          passed = Rgb::Zero();
-          break;
-        }
-        passed = passed.cwiseProduct(leg(from, p));
-        from = p;
-        target = m.reflect(target);
-      }
-      if (passed != Rgb::Zero()) passed = passed.cwiseProduct(leg(from, y));
-      return passed;
-    });
-    return specular.cwiseProduct(ff * visible);
-  }
-
-  /// The mean of pass(y) over the shadow-ray samples y of the shooter: side^2 strata of its
-  /// parameter square, jittered from the stream `key` selects.
-  template <typename Pass>
-  Rgb mean_over_samples(const Patch& shooter, uint64_t key, const Pass& pass) const {
-    uint64_t state = splitmix64(seed_ ^ splitmix64(key));
-    Rgb sum = Rgb::Zero();
-    for (int a = 0; a < side_; ++a) {
-      for (int b = 0; b < side_; ++b) {
-        const double u = (a + next_uniform(state)) / side_, v = (b + next_uniform(state)) / side_;
-        sum += pass(patch_point(shooter, u, v));
-      }
-    }
-    return sum / (side_ * side_);
-  }
-
-  /// What passes between two points (not counting surfaces within epsilon of either end; the
-  /// far end with a relative margin too, for grazing rays, whose float hit distance is least
-  /// precise).
-  Rgb leg(const Vec3& a, const Vec3& b) const {
-    const Vec3 d = b - a;
-    const double distance = d.norm();
-    if (!(distance > 2 * epsilon_)) return Rgb::Ones();
-    return caster_.transmittance({a, d / distance}, epsilon_, distance * (1 - 1e-6) - epsilon_,
-                                 epsilon_);
-  }
-
-  Rgb direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
-                         uint64_t key) const {
-    if (polygon == shooter.polygon) return Rgb::Zero();  // a planar polygon cannot see itself
-    if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return Rgb::Zero();
-    const double ff = point_polygon_form_factor(x, n, shooter.corners);
-    if (!(ff > 0)) return Rgb::Zero();
-    ++pairs_;
-    // Nothing between them: every ray would pass, so cast none.
-    if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon)) {
-      ++unhidden_;
-      return Rgb::Constant(ff);
-    }
-    return ff * mean_over_samples(shooter, key, [&](const Vec3& y) { return leg(x, y); });
-  }
-
-  const RayCaster& caster_;
-  ShadowCulling culling_;
-  double epsilon_;
-  bool cull_ = true;
-  mutable std::atomic<long long> pairs_{0}, unhidden_{0};
-  int side_ = 4;
-  uint64_t seed_ = 1;
-  double in_plane_ = 0;
-  std::vector<MirrorPiece> pieces_;
-  std::vector<std::vector<int>> chains_;  ///< Of at most Scene::mirror_depth reflections
-};
 
 void validate(const SolverSettings& s) {
   auto bad = [](const std::string& what) { throw Error("solver settings: " + what); };
@@ -234,17 +67,25 @@ class ProgressiveSolver {
     solution_.settings = settings;
     solution_.patches = make_patches(scene_, settings.patch_size * diagonal_);
     solution_.elements = make_elements(solution_.patches, settings.element_levels);
+    find_buried();
     // Initial state: each patch's unshot radiosity and each element's radiosity is its emission.
-    for (Patch& p : patches()) {
+    for (size_t i = 0; i < patches().size(); ++i) {
+      Patch& p = patches()[i];
       p.unshot = material(p.polygon).emission;
       p.radiosity = p.unshot;
-      stats().emitted += p.unshot * p.area;
+      stats().emitted += p.unshot * live_area_[i];
       double area;
       Vec3 centroid;
       element_geometry(p.corners, &area, &centroid);
       patch_bounds_.push_back(bounding_sphere(p.corners, centroid));
     }
     for (Element& e : elements()) e.radiosity = material(e.polygon).emission;
+    near_field_ = NearField(patches().size(), elements());
+    leaf_unshot_.resize(elements().size());
+    leaf_shot_.assign(elements().size(), Rgb::Zero());
+    shooting_.assign(elements().size(), Rgb::Zero());
+    for (size_t e = 0; e < elements().size(); ++e)
+      leaf_unshot_[e] = buried_[e] ? Rgb::Zero() : material(elements()[e].polygon).emission;
     leaves_ = solution_.leaves();
   }
 
@@ -255,7 +96,7 @@ class ProgressiveSolver {
       int shooter = -1;
       double largest = 0, remaining = 0;
       for (size_t p = 0; p < patches().size(); ++p) {
-        const double power = unshot_power(patches()[p]);
+        const double power = unshot_power(static_cast<int>(p));
         remaining += power;
         if (power > largest) largest = power, shooter = static_cast<int>(p);  // ties: lowest index
       }
@@ -269,7 +110,7 @@ class ProgressiveSolver {
         report.target_fraction = settings_.unshot_fraction;
         report.elements = static_cast<int>(leaves_.size());
         double after = 0;
-        for (const Patch& p : patches()) after += unshot_power(p);
+        for (size_t p = 0; p < patches().size(); ++p) after += unshot_power(static_cast<int>(p));
         report.unshot_fraction = emitted > 0 ? after / emitted : 0;
         progress(report);
       }
@@ -289,7 +130,7 @@ class ProgressiveSolver {
     std::vector<char> split(mesh.face_count(), 0);
     tbb::parallel_for(0, mesh.face_count(), [&](int f) {
       const Element& el = solution_.elements[mesh.element(f)];
-      if (!splittable(el)) return;
+      if (!splittable(mesh.element(f))) return;
       std::vector<int> neighbours;
       for (const auto h : m.fh_range(m.face_handle(f))) {
         const auto opposite = h.opp().face();
@@ -337,8 +178,9 @@ class ProgressiveSolver {
       const Element& el = elements()[e];
       patches()[el.patch].radiosity += el.radiosity * (el.area / patches()[el.patch].area);
     }
-    for (const Patch& p : patches()) {
-      stats().unshot += p.unshot * p.area;
+    for (size_t i = 0; i < patches().size(); ++i) {
+      const Patch& p = patches()[i];
+      stats().unshot += p.unshot * live_area_[i];
       area_rho += material(p.polygon).reflectance * p.area;
       total_area += p.area;
     }
@@ -382,7 +224,40 @@ class ProgressiveSolver {
   // A re-gather can leave a patch's unshot radiosity slightly negative (its children hold a
   // little less than their parent did: the patch has over-shot). Negative unshot radiosity is
   // shot like positive, as a correction, so the remaining power is measured in absolute value.
-  static double unshot_power(const Patch& p) { return p.unshot.cwiseAbs().sum() * p.area; }
+  double unshot_power(int p) const {
+    return solution_.patches[p].unshot.cwiseAbs().sum() * live_area_[p];
+  }
+
+  /// Where a polygon passes through or under a closed object (a floor under a block standing
+  /// on it), its patches are partly buried: that part receives nothing and is hidden from
+  /// everything. A patch's unshot radiosity is therefore a density over its live area A_live
+  /// (power = Delta B A_live): shot over the whole patch, a receiver's shadow rays to the
+  /// buried part are blocked, so it gets Delta B FF V with V ~ A_live / A, what the live part
+  /// alone sends. Spread over the whole area instead, Delta B would be diluted by A_live / A
+  /// and the light of every patch along a contact line lost in part, the floor's most of all.
+  /// A_live is measured on an 8 x 8 grid of each patch; elements are buried when their
+  /// centroid is, and buried elements neither receive nor split.
+  void find_buried() {
+    buried_.assign(elements().size(), 0);
+    near_contact_.assign(elements().size(), 0);
+    tbb::parallel_for(size_t(0), elements().size(), [&](size_t e) {
+      const Element& el = elements()[e];
+      buried_[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
+      near_contact_[e] = near_a_contact(el);
+    });
+    constexpr int grid = 8;
+    live_area_.assign(patches().size(), 0);
+    tbb::parallel_for(size_t(0), patches().size(), [&](size_t i) {
+      const Patch& p = patches()[i];
+      int live = 0;
+      for (int a = 0; a < grid; ++a) {
+        for (int b = 0; b < grid; ++b)
+          live += !rays_.is_buried(patch_point(p, (a + 0.5) / grid, (b + 0.5) / grid), p.normal);
+      }
+      // Wholly buried: nothing of it is ever received, so nothing is shot; keep A.
+      live_area_[i] = live > 0 ? p.area * live / (grid * grid) : p.area;
+    });
+  }
 
   bool refinement_enabled() const { return settings_.refine_threshold > 0 && reference_ > 0; }
   /// Errors are seen relative to the local brightness: the limit follows the local radiosity,
@@ -391,20 +266,55 @@ class ProgressiveSolver {
   double limit(double local_radiosity) const {
     return settings_.refine_threshold * std::clamp(local_radiosity, 0.1 * reference_, reference_);
   }
-  bool splittable(const Element& e) const { return longest_edge(e.corners) > min_size_; }
+  bool splittable(int e) const {
+    return !buried_[e] && longest_edge(solution_.elements[e].corners) > min_size_;
+  }
   void split_into(int e, std::vector<int>& children) {
     split_element(elements(), e);
     const int first = elements()[e].first_child;
     back_irradiance_.resize(elements().size(), Rgb::Zero());
+    buried_.resize(elements().size(), 0);
+    leaf_unshot_.resize(elements().size(), Rgb::Zero());
+    leaf_shot_.resize(elements().size(), Rgb::Zero());
+    shooting_.resize(elements().size(), Rgb::Zero());
     for (int c = 0; c < 4; ++c) {
       children.push_back(first + c);
+      // The same density over each part: what the element held, shot and is to shoot.
+      leaf_unshot_[first + c] = leaf_unshot_[e];
+      leaf_shot_[first + c] = leaf_shot_[e];
+      shooting_[first + c] = shooting_[e];
       back_irradiance_[first + c] = back_irradiance_[e];  // inherited, as the front's is
+      const Element& child = elements()[first + c];
+      buried_[first + c] = rays_.is_buried(child.centroid, solution_.patches[child.patch].normal);
+      near_contact_.resize(elements().size(), 0);
+      near_contact_[first + c] = near_a_contact(child);
     }
     ++stats().refined;
   }
-  Rgb visible_ff(const Element& el, const Patch& source, uint64_t key) const {
+  Rgb visible_ff(const Element& el, const Patch& source, uint64_t key, int fewer = 1) const {
     return rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal, el.polygon,
-                                     source, key);
+                                     source, key, fewer);
+  }
+  /// Elements near a concave junction or a contact (another polygon's front within 1.5 times
+  /// their size) are split by the constant-radiosity test (see refine_during_shot).
+  bool near_a_contact(const Element& el) const {
+    return rays_.faces_within(el.centroid, solution_.patches[el.patch].normal,
+                              1.5 * longest_edge(el.corners));
+  }
+
+  /// The visible form factor from element e to a node of a patch's tree, for the near field:
+  /// the node as a patch of its own, with a quarter of the shadow rays.
+  Rgb piece_form_factor(int e, int node, int shot) const {
+    const Element& piece = solution_.elements[node];
+    Patch part;
+    part.polygon = piece.polygon;
+    part.corners = piece.corners;
+    part.normal = solution_.patches[piece.patch].normal;
+    part.area = piece.area;
+    return visible_ff(solution_.elements[e], part, stream_key(shot, e, StreamKind::near, node), 2);
+  }
+  bool is_near(const Element& el, int patch) const {
+    return NearField::is_near(el.centroid, patch_bounds_[patch]);
   }
 
   /// One shot of patch `shooter`'s unshot radiosity to every leaf.
@@ -413,21 +323,34 @@ class ProgressiveSolver {
     const Rgb delta = source.unshot;
     source.unshot = Rgb::Zero();
     const int shot = stats().shots;
+    // The pieces the near field is shot from, with what each has not shot yet.
+    for (const int l : leaves_) {
+      if (elements()[l].patch != shooter) continue;
+      shooting_[l] = leaf_unshot_[l];
+      leaf_shot_[l] += leaf_unshot_[l];
+      leaf_unshot_[l] = Rgb::Zero();
+    }
+    near_field_.average_up(elements(), shooter, shooting_);
 
     // Receive at every leaf's centroid; split where this shot is far from linear.
-    ff_.resize(elements().size(), Rgb::Zero());
-    back_ff_.resize(elements().size(), Rgb::Zero());
     back_irradiance_.resize(elements().size(), Rgb::Zero());
-    receive(leaves_, source, shot);
+    far_density_ = delta;
+    receive(leaves_, shooter, shot);
+    // The far receivers see the shooter with the radiosity that keeps the shot's energy.
+    far_density_ = near_field_.far_density(elements(), shooter, leaves_, near_, ff_,
+                                           live_area_[shooter], shooting_, delta);
+    for (const int e : leaves_) {
+      if (!near_[e] && !buried_[e]) incoming_[e] = far_density_.cwiseProduct(ff_[e]);
+    }
     if (refinement_enabled()) refine_during_shot(shooter, delta, shot);
 
     // Distribute, serially in element order (deterministic sums).
     Rgb received = Rgb::Zero();
     for (const int e : leaves_) {
-      if (ff_[e] == Rgb::Zero() && back_ff_[e] == Rgb::Zero()) continue;
+      if (incoming_[e] == Rgb::Zero() && back_ff_[e] == Rgb::Zero()) continue;
       Element& el = elements()[e];
       const Rgb rho = material(el.polygon).reflectance;
-      const Rgb irradiance = delta.cwiseProduct(ff_[e]);
+      const Rgb irradiance = incoming_[e];
       const Rgb reflected = rho.cwiseProduct(irradiance);
       const Rgb stay = stays(el.polygon).cwiseProduct(irradiance);
       el.radiosity += reflected;
@@ -442,24 +365,59 @@ class ProgressiveSolver {
         stats().absorbed += absorbed;
       }
       Patch& owner = patches()[el.patch];
-      owner.unshot += reflected * (el.area / owner.area);
+      owner.unshot += reflected * (el.area / live_area_[el.patch]);
+      leaf_unshot_[e] += reflected;
     }
-    stats().escaped += delta * source.area - received;
+    stats().escaped += delta * live_area_[shooter] - received;
     source.shot += delta;
     ++stats().shots;
   }
 
-  void receive(const std::vector<int>& which, const Patch& source, int shot) {
+  /// This shot's visible form factor at each of `which`. A pair's form factor does not change
+  /// between shots: a patch shooting again reuses what its first shot measured (same value,
+  /// same jitter), so repeated shots cast no rays. The store is kept while it fits in
+  /// form_factor_budget bytes; beyond that, patches measure afresh each time.
+  void receive(const std::vector<int>& which, int shooter, int shot) {
+    const Patch& source = solution_.patches[shooter];
+    store_.grow(shooter, patches().size(), elements().size());
+    near_field_.grow(elements().size());
+    ff_.resize(elements().size(), Rgb::Zero());
+    incoming_.resize(elements().size(), Rgb::Zero());
+    back_ff_.resize(elements().size(), Rgb::Zero());
+    near_.resize(elements().size(), 0);
     tbb::parallel_for(size_t(0), which.size(), [&](size_t k) {
       const int e = which[k];
-      ff_[e] = visible_ff(elements()[e], source, stream_key(shot, e, StreamKind::centre, 0));
+      if (buried_[e]) return;  // stays zero
+      ff_[e] = stored_form_factor(shooter, e, stream_key(shot, e, StreamKind::centre, 0));
+      near_[e] = is_near(elements()[e], shooter);
+      if (near_[e]) {
+        incoming_[e] = near_field_.gather(
+            elements(), e, shooter, shooting_,
+            [&](int node) { return piece_form_factor(e, node, shot); }, true);
+      } else {
+        incoming_[e] = far_density_.cwiseProduct(ff_[e]);
+      }
       if (absorbs_at_back(elements()[e].polygon))
         back_ff_[e] = back_ff(elements()[e], source, stream_key(shot, e, StreamKind::back, 0));
     });
   }
 
+  /// The visible form factor from element e to patch `shooter`: stored, or measured now (and
+  /// stored when there is room).
+  Rgb stored_form_factor(int shooter, int e, uint64_t key) {
+    Rgb ff;
+    if (store_.find(shooter, e, &ff)) return ff;
+    ff = visible_ff(elements()[e], solution_.patches[shooter], key);
+    store_.put(shooter, e, ff);
+    return ff;
+  }
+
   /// Splits leaves where linear interpolation from the corners misses this shot's radiosity
-  /// at the centre by more than the limit; children receive the shot and re-gather.
+  /// at the centre by more than the limit; children receive the shot and re-gather. Near a
+  /// contact or a concave edge (near_a_contact), where points of the local pass see an element
+  /// from close by and at a large solid angle, the test is stricter: any corner off the centre
+  /// by more than the limit splits, because the local pass takes an element's radiosity as
+  /// constant over it, and a linear rise across it is what a point beside it sees.
   void refine_during_shot(int shooter, const Rgb& delta, int shot) {
     const Patch& source = patches()[shooter];
     const Sphere& sb = patch_bounds_[shooter];
@@ -473,7 +431,7 @@ class ProgressiveSolver {
         const double scale = rho.maxCoeff() * delta.cwiseAbs().maxCoeff();
         const double lim = limit(
             (el.radiosity + rho.cwiseProduct(delta).cwiseProduct(ff_[e])).cwiseAbs().maxCoeff());
-        if (scale <= lim || !splittable(el)) return;
+        if (scale <= lim || !splittable(e)) return;
         // Largest possible form factor from this element to the shooter (bounding spheres):
         // skip pairs that cannot reach the limit.
         const Sphere eb = bounding_sphere(el.corners, el.centroid);
@@ -482,15 +440,22 @@ class ProgressiveSolver {
             gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
         if (scale * ff_max <= lim) return;
         // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
+        double off = 0;
         Rgb mean = Rgb::Zero();
         for (size_t c = 0; c < el.corners.size(); ++c) {
           const Vec3 x = el.corners[c] + 1e-3 * (el.centroid - el.corners[c]);
-          mean += rays_.visible_form_factor(
+          const Rgb at_corner = rays_.visible_form_factor(
               x, solution_.patches[el.patch].normal, el.polygon, source,
               stream_key(shot, e, StreamKind::corner, static_cast<int>(c)));
+          if (near_contact_[e]) {
+            off = std::max(off, (ff_[e] - at_corner).cwiseAbs().maxCoeff());
+          } else {
+            mean += at_corner;
+          }
         }
-        mean /= static_cast<double>(el.corners.size());
-        split[k] = scale * (ff_[e] - mean).cwiseAbs().maxCoeff() > lim;
+        if (!near_contact_[e])
+          off = (ff_[e] - mean / static_cast<double>(el.corners.size())).cwiseAbs().maxCoeff();
+        split[k] = scale * off > lim;
       });
       std::vector<int> children;
       for (size_t k = 0; k < candidates.size(); ++k) {
@@ -499,7 +464,7 @@ class ProgressiveSolver {
       if (children.empty()) break;
       ff_.resize(elements().size(), Rgb::Zero());
       back_ff_.resize(elements().size(), Rgb::Zero());
-      receive(children, source, shot);
+      receive(children, shooter, shot);
       regather(children);
       candidates = std::move(children);
     }
@@ -515,14 +480,30 @@ class ProgressiveSolver {
   void regather(const std::vector<int>& children) {
     const int shot = stats().shots;
     std::vector<Rgb> gathered(children.size(), Rgb::Zero()), back(children.size(), Rgb::Zero());
+    for (size_t j = 0; j < patches().size(); ++j)
+      near_field_.average_up(elements(), static_cast<int>(j), leaf_shot_);
+    for (size_t j = 0; j < patches().size(); ++j) {
+      if (patches()[j].shot != Rgb::Zero())
+        store_.grow(static_cast<int>(j), patches().size(), elements().size());
+    }
+    near_field_.grow(elements().size());
     tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
       const Element& el = elements()[children[k]];
+      if (buried_[children[k]]) return;  // receives nothing
       const bool at_back = absorbs_at_back(el.polygon);
       for (size_t j = 0; j < solution_.patches.size(); ++j) {
         const Patch& p = solution_.patches[j];
         if (p.shot == Rgb::Zero()) continue;
-        gathered[k] += p.shot.cwiseProduct(visible_ff(
-            el, p, stream_key(shot, children[k], StreamKind::regather, static_cast<int>(j))));
+        if (is_near(el, static_cast<int>(j))) {
+          const int e = children[k];
+          gathered[k] += near_field_.gather(
+              elements(), e, static_cast<int>(j), leaf_shot_,
+              [&](int node) { return piece_form_factor(e, node, shot); }, false);
+        } else {
+          gathered[k] += p.shot.cwiseProduct(stored_form_factor(
+              static_cast<int>(j), children[k],
+              stream_key(shot, children[k], StreamKind::regather, static_cast<int>(j))));
+        }
         if (at_back) {
           back[k] += p.shot.cwiseProduct(back_ff(
               el, p, stream_key(shot, children[k], StreamKind::back, static_cast<int>(j) + 1)));
@@ -545,7 +526,8 @@ class ProgressiveSolver {
         stats().escaped -= back_power;
       }
       Patch& owner = patches()[el.patch];
-      owner.unshot += rho.cwiseProduct(power) / owner.area;
+      owner.unshot += rho.cwiseProduct(power) / live_area_[el.patch];
+      leaf_unshot_[children[k]] += rho.cwiseProduct(power) / el.area;
     }
   }
 
@@ -557,6 +539,17 @@ class ProgressiveSolver {
   Solution solution_;
   const Shooter rays_;
   std::vector<Sphere> patch_bounds_;
+  std::vector<double> live_area_;   ///< Per patch: its area outside closed objects
+  std::vector<char> buried_;        ///< Per element: its centroid is inside a closed object
+  std::vector<char> near_contact_;  ///< Per element: another polygon's front is near
+  /// Per element, radiosity received and not yet shot, and shot so far (meaningful on leaves;
+  /// a patch's unshot radiosity is their mean over its live area), and what it shoots now.
+  std::vector<Rgb> leaf_unshot_, leaf_shot_, shooting_;
+  NearField near_field_{0, {}};
+  FormFactorStore store_{size_t(1) << 30};  ///< 1 GiB
+  std::vector<Rgb> incoming_;               ///< This shot's irradiance per element
+  Rgb far_density_ = Rgb::Zero();           ///< The shooter's radiosity as far receivers see it
+  std::vector<char> near_;  ///< This shot: the element is in the shooter's near field
   std::vector<int> leaves_;
   std::vector<Rgb> ff_;               ///< This shot's visible form factor per element, per channel.
   std::vector<Rgb> back_ff_;          ///< The same at the backs of filters' elements...

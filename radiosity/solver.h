@@ -17,14 +17,18 @@ struct SolveProgress {
 };
 
 /// Meshes the caster's scene and solves it:
-///   1. patches of settings.patch_size, each split into 4^element_levels elements;
+///   1. polygons cut along their contact lines (radiosity/contact_cuts.h), then patches of
+///      settings.patch_size, each split into 4^element_levels elements; elements inside
+///      closed objects are buried (Shooter::is_buried) and take no part;
 ///   2. repeatedly shoot the patch with the largest unshot power sum_c |Delta B_c| * A: every
 ///      leaf element e receives H_e = Delta B * FF(x_e, patch) * V, with FF the exact unoccluded
 ///      point-to-patch form factor at the element's centroid (Lambert) and V the fraction of
 ///      `visibility_samples` stratified jittered shadow rays to the patch that are unblocked;
 ///      B_e += rho_e H_e and the element's patch gains rho_e H_e A_e / A_patch of unshot
 ///      radiosity. Elements where this shot's radiosity is far from linear are split first
-///      (see SolverSettings::refine_threshold);
+///      (see SolverSettings::refine_threshold). Receivers close to the shooter gather it piece
+///      by piece instead (radiosity/near_field.h), and a pair's visible form factor is measured
+///      once for all the shots (radiosity/form_factor_store.h);
 ///   3. stop when the unshot power falls below settings.unshot_fraction of the emitted power;
 ///   4. up to settings.refine_passes times, split elements their neighbours' plane mispredicts,
 ///      let the children re-gather what has been shot, and shoot on to convergence.

@@ -253,6 +253,42 @@ TEST(Cli, ProbePathTracesTheFurnaceWithStandardErrors) {
   EXPECT_NE(refused.err.find("takes no --solution"), std::string::npos) << refused.err;
 }
 
+TEST(Cli, ProbeTracesToATargetErrorInBatches) {
+  // --target-error: batches of --samples paths until every channel's standard error is at
+  // most that fraction of the value; the first batch is the plain run's, and the file is the
+  // same on any thread count. Asked of an exact method, it is refused.
+  const fs::path dir = scratch();
+  {
+    std::ofstream points(dir / "cube.csv");
+    points << "x,y,z,nx,ny,nz\n0.5,0.5,0,0,0,1\n0.05,0.9,0,0,0,1\n";
+  }
+  const std::string args = "probe " + quoted(kRoot / "data/closed-cube/scene.json") + " --points " +
+                           quoted(dir / "cube.csv") + " --method pathtrace --samples 200";
+  const Result one = run(args), target = run(args + " --target-error 0.002");
+  ASSERT_EQ(target.exit_code, 0) << target.err;
+  EXPECT_EQ(run(args + " --target-error 0.002 -j 1").out, target.out);
+  EXPECT_NE(target.out, one.out);
+  std::istringstream in(target.out);
+  std::string line;
+  std::getline(in, line);
+  for (int rows = 0; std::getline(in, line); ++rows) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    ASSERT_EQ(f.size(), 13u) << line;
+    for (int c = 0; c < 3; ++c) {
+      const double e = std::stod(f[6 + c]), se = std::stod(f[10 + c]);
+      EXPECT_LE(se, 0.002 * e) << line;
+      EXPECT_NEAR(e, 2.0, 4 * se) << line;
+    }
+  }
+  const Result refused = run("probe " + quoted(kRoot / "data/closed-cube/scene.json") +
+                             " --points " + quoted(dir / "cube.csv") + " --target-error 0.01");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("--target-error is for --method pathtrace"), std::string::npos)
+      << refused.err;
+}
+
 TEST(Cli, ProbeRejectsMalformedPointsNamingTheLine) {
   const std::string scene = quoted(kRoot / "data/cornell-box/scene.json");
   const std::pair<const char*, const char*> cases[] = {

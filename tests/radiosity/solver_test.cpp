@@ -12,9 +12,12 @@
 #include "scene/polygon_validation.h"
 #include "scene/scene_loader.h"
 #include "tests/random_scenes.h"
+#include "tests/scene_builder.h"
 
 namespace rad {
 namespace {
+
+using test::SceneBuilder;
 
 const std::filesystem::path kScenes = std::filesystem::path(RAD_SOURCE_DIR) / "data";
 
@@ -50,8 +53,10 @@ TEST(Solver, FurnaceGivesEOverOneMinusRhoAndErrorFallsWithThreshold) {
     }
     EXPECT_LT(error, previous) << "the error must fall as the threshold falls";
     previous = error;
-    // Radiosity only ever grows towards 2: nothing overshoots.
-    for (const int e : s.leaves()) ASSERT_LE(s.elements[e].radiosity.maxCoeff(), 2.0 * (1 + 1e-12));
+    // Radiosity grows towards 2 and does not overshoot, but for what the far field's balance
+    // moves between receivers to keep each shot's energy (radiosity/near_field.h): measured
+    // 5e-6 of the value.
+    for (const int e : s.leaves()) ASSERT_LE(s.elements[e].radiosity.maxCoeff(), 2.0 * (1 + 1e-4));
   }
 }
 
@@ -63,6 +68,50 @@ void expect_energy_balance(const Solution& s, const std::string& name) {
         << name << " channel " << c << ": emitted " << st.emitted[c] << " absorbed "
         << st.absorbed[c] << " escaped " << st.escaped[c] << " unshot " << st.unshot[c];
   }
+}
+
+TEST(Solver, TheFloorUnderABlockIsBuriedAndTheLightAroundItKept) {
+  // A lamp over a floor with a block standing on it. The floor is cut along the block's foot
+  // (radiosity/contact_cuts.h): what lies under the block is buried, receives nothing and sends
+  // nothing; the light of the live floor around it is shot undiluted; the ledger holds.
+  SceneBuilder b;
+  const int white = b.material("white", Rgb::Constant(0.5), Rgb::Zero());
+  b.rectangle(0, 4, 0, 4, 0, false, white);
+  const std::vector<Vec3> foot{{1.3, 1.1, 0}, {2.5, 1.5, 0}, {2.1, 2.7, 0}, {0.9, 2.3, 0}};
+  for (size_t i = 0; i < 4; ++i) {
+    const Vec3& a = foot[i];
+    const Vec3& c = foot[(i + 1) % 4];
+    b.polygon({a, c, c + Vec3(0, 0, 0.8), a + Vec3(0, 0, 0.8)}, white);
+  }
+  b.polygon({foot[0] + Vec3(0, 0, 0.8), foot[1] + Vec3(0, 0, 0.8), foot[2] + Vec3(0, 0, 0.8),
+             foot[3] + Vec3(0, 0, 0.8)},
+            white);
+  b.rectangle(1.5, 2.5, 1.5, 2.5, 3, true, b.material("lamp", Rgb::Zero(), Rgb::Constant(10)));
+  const Solution s = solve_scene(b.scene(), SolverSettings{});
+  expect_energy_balance(s, "block on a floor");
+  EXPECT_NEAR(s.stats.emitted[0], 10.0, 1e-9);  // the lamp is not buried
+  const auto inside = [&](const Vec3& p, double margin) {
+    for (size_t i = 0; i < 4; ++i) {
+      const Vec3 e = foot[(i + 1) % 4] - foot[i];
+      if (e.cross(p - foot[i]).z() / e.norm() <= margin) return false;
+    }
+    return true;
+  };
+  int buried = 0, lit = 0;
+  for (const int e : s.leaves()) {
+    const Element& el = s.elements[e];
+    if (el.polygon != 0) continue;
+    if (inside(el.centroid, 1e-9)) {
+      ++buried;
+      EXPECT_EQ(el.irradiance, Rgb::Zero()) << "element " << e;
+      EXPECT_EQ(el.radiosity, Rgb::Zero()) << "element " << e;
+      for (const Vec3& c : el.corners) EXPECT_TRUE(inside(c, -1e-9)) << "straddles the foot";
+    } else {
+      lit += el.irradiance.maxCoeff() > 0;
+    }
+  }
+  EXPECT_GT(buried, 0);
+  EXPECT_GT(lit, 100);
 }
 
 TEST(Solver, ConservesEnergyOnThreeScenes) {

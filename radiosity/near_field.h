@@ -1,0 +1,71 @@
+#pragma once
+/// Shooting a patch piece by piece to the receivers near it.
+#include <Eigen/Core>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "radiosity/shooter.h"
+#include "radiosity/solution.h"
+
+namespace rad {
+
+/// Progressive radiosity shoots a patch as one polygon of uniform radiosity (its unshot mean).
+/// Seen from far, that is what it is; seen from close by (a concave corner, a block's foot),
+/// the form factor weights its parts unevenly, and the uniform patch puts light where there is
+/// none (a contact shadow) and takes it from where it is. Receivers in a patch's near field
+/// therefore gather it piece by piece: its element tree is descended while the receiver is in
+/// a node's near field, as hierarchical radiosity refines its links (Hanrahan, Salzman,
+/// Aupperle 1991), each node radiating the area-weighted mean of its leaves. Each (receiver,
+/// node) form factor is measured once and kept (elements only split: a node never changes).
+/// The far receivers then see the patch with the radiosity that keeps the shot's energy (see
+/// far_density).
+class NearField {
+ public:
+  /// A receiver is in a piece's near field when its centroid lies within this many bounding
+  /// radii of the piece's centroid.
+  static constexpr double radii = 3;
+  static bool is_near(const Vec3& x, const Sphere& piece) {
+    return (x - piece.centre).norm() < radii * piece.radius;
+  }
+
+  /// Records the top-level elements of every patch (`elements` as made by make_elements).
+  NearField(size_t patches, const std::vector<Element>& elements);
+
+  /// Room for `elements` receivers. Serial.
+  void grow(size_t elements);
+
+  /// Fills the inner nodes of a patch's trees with the area-weighted mean of `value` over their
+  /// leaves.
+  void average_up(const std::vector<Element>& elements, int patch, std::vector<Rgb>& value) const;
+
+  /// Sum over the pieces of `patch` that receiver e sees (descending where it is near) of
+  /// density(piece) x FF(e, piece); `measure(node)` is the visible form factor to a node, called
+  /// once per pair. With `used`, the pieces and their form factors are listed there (the
+  /// receiver's slot, see used()). Thread-safe across distinct receivers.
+  Rgb gather(const std::vector<Element>& elements, int e, int patch,
+             const std::vector<Rgb>& density, const std::function<Rgb(int)>& measure, bool record);
+
+  /// The pieces receiver e used in its last recorded gather.
+  const std::vector<std::pair<int, Rgb>>& used(int e) const { return used_[e]; }
+
+  /// The radiosity the far receivers should see the patch with. If they took its mean, the
+  /// shot would deliver sum_l A_l (mean - d_l) F_far(l) less than it sends (d_l a leaf's
+  /// radiosity, F_far(l) the fraction of its light that goes to far receivers): pieces at a
+  /// concave edge send much of theirs to the near wall, and are the darker ones, so that sum is
+  /// a loss (0.4% of the light in a closed room). The mean is therefore weighted by
+  /// F_far(l) = U - F_near(l), with U the fraction of the patch's light its receivers get as
+  /// a uniform patch (sum_e A_e FF_e / A_live, `ff` per element) and F_near(l) what the near
+  /// receivers (`near`) took from leaf l and the nodes above it (by reciprocity, A_e FF(e,
+  /// node) / A_node). Returns `mean` when no receiver is near.
+  Rgb far_density(const std::vector<Element>& elements, int patch, const std::vector<int>& leaves,
+                  const std::vector<char>& near, const std::vector<Rgb>& ff, double live_area,
+                  const std::vector<Rgb>& density, const Rgb& mean) const;
+
+ private:
+  std::vector<std::vector<int>> roots_;  ///< Per patch, its top-level elements
+  std::vector<std::vector<std::pair<int, Eigen::Vector3f>>> stored_;  ///< Per receiver
+  std::vector<std::vector<std::pair<int, Rgb>>> used_;                ///< Per receiver
+};
+
+}  // namespace rad

@@ -1,0 +1,200 @@
+#include "radiosity/shooter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "geometry/lambert.h"
+#include "geometry/plane.h"
+#include "radiosity/random_stream.h"
+#include "scene/polygon.h"
+
+namespace rad {
+
+Vec3 patch_point(const Patch& p, double u, double v) {
+  const auto& c = p.corners;
+  if (c.size() == 4)
+    return (1 - u) * (1 - v) * c[0] + u * (1 - v) * c[1] + u * v * c[2] + (1 - u) * v * c[3];
+  if (u + v > 1) u = 1 - u, v = 1 - v;
+  return (1 - u - v) * c[0] + u * c[1] + v * c[2];
+}
+
+Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
+  double r = 0;
+  for (const Vec3& c : corners) r = std::max(r, (c - centre).norm());
+  return {centre, r};
+}
+
+namespace {
+
+/// True when p (in the piece's plane) lies in its outline (convex, counter-clockwise).
+bool in_outline(const MirrorPiece& m, const Vec3& p) {
+  const size_t k = m.outline.size();
+  for (size_t i = 0; i < k; ++i) {
+    const Vec3& a = m.outline[i];
+    const Vec3& b = m.outline[(i + 1) % k];
+    if ((b - a).cross(p - a).dot(m.normal) < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
+    : caster_(caster),
+      culling_(caster.scene(), epsilon),
+      epsilon_(epsilon),
+      cull_(settings.shaft_culling) {
+  side_ =
+      std::max(1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
+  seed_ = settings.seed;
+  const Scene& scene = caster.scene();
+  in_plane_ = scene.tolerance().in_plane;
+  pieces_ = mirror_pieces(scene);
+  chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
+}
+
+Rgb Shooter::visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
+                                 uint64_t key, int fewer) const {
+  const int side = std::max(1, side_ / std::max(1, fewer));
+  Rgb ff = direct_form_factor(x, n, polygon, shooter, key, side);
+  for (size_t c = 0; c < chains_.size(); ++c)
+    ff += image_form_factor(x, n, shooter, chains_[c], splitmix64(key ^ (c + 1)), side);
+  return ff;
+}
+
+/// The image of the shooter seen from x along the chain m_1 .. m_k (x -> m_1 -> ... -> m_k
+/// -> shooter): y^ = R_1 ... R_k y. A sample ray runs from x to y^, must cross each m_j's
+/// plane inside its outline in turn (reflected at each), and passes the blockers of every
+/// leg (x -> p_1, p_1 -> p_2, ..., p_k -> y) with their transmittances.
+namespace {
+
+/// Probe directions about n: n itself, then eight at `angle` from it.
+std::vector<Vec3> probe_directions(const Vec3& x, const Vec3& n, double angle) {
+  const PlaneFrame frame(x, n);
+  const double tilt = std::sin(angle), lift = std::cos(angle);
+  std::vector<Vec3> out{n};
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * std::numbers::pi / 4;
+    out.push_back((lift * n + tilt * (std::cos(a) * frame.u + std::sin(a) * frame.v)).normalized());
+  }
+  return out;
+}
+
+}  // namespace
+
+bool Shooter::is_buried(const Vec3& x, const Vec3& n) const {
+  // A point in the open sees the front of some polygon (or the sky) along one of the probes;
+  // inside a closed object every probe ends at the back of one of its faces.
+  const Vec3 origin = x + 10 * epsilon_ * n;
+  for (const Vec3& d : probe_directions(x, n, std::numbers::pi / 3)) {
+    const std::optional<Hit> hit = caster_.closest_hit({origin, d}, 0);
+    if (!hit || hit->front_facing) return false;
+    // A filter does not enclose: light comes through it.
+    const Scene& scene = caster_.scene();
+    if (scene.materials[scene.polygons[hit->polygon].material].is_filter()) return false;
+  }
+  return true;
+}
+
+bool Shooter::faces_within(const Vec3& x, const Vec3& n, double distance) const {
+  const Vec3 origin = x + 10 * epsilon_ * n;
+  for (const Vec3& d : probe_directions(x, n, 0.45 * std::numbers::pi)) {
+    const std::optional<Hit> hit = caster_.closest_hit({origin, d}, 0, distance);
+    if (hit && hit->front_facing) return true;
+  }
+  return false;
+}
+
+Rgb Shooter::image_form_factor(const Vec3& x, const Vec3& n, const Patch& shooter,
+                               const std::vector<int>& chain, uint64_t key, int side) const {
+  const MirrorPiece& first = pieces_[chain.front()];
+  const MirrorPiece& last = pieces_[chain.back()];
+  if (!(first.height(x) > in_plane_)) return Rgb::Zero();  // x must face the first mirror
+  bool in_front = false;                                   // and the shooter the last
+  for (const Vec3& c : shooter.corners) in_front = in_front || last.height(c) > in_plane_;
+  if (!in_front) return Rgb::Zero();
+  const auto image_of = [&](Vec3 y) {
+    for (auto j = chain.rbegin(); j != chain.rend(); ++j) y = pieces_[*j].reflect(y);
+    return y;
+  };
+  std::vector<Vec3> corners;
+  for (const Vec3& c : shooter.corners) corners.push_back(image_of(c));
+  Vec3 normal = shooter.normal;
+  for (auto j = chain.rbegin(); j != chain.rend(); ++j)
+    normal = pieces_[*j].reflect_direction(normal);
+  if (chain.size() % 2 == 1) std::reverse(corners.begin(), corners.end());
+  if (!is_in_front_of(x, corners[0], normal)) return Rgb::Zero();
+  const double ff = point_polygon_form_factor(x, n, corners);
+  if (!(ff > 0)) return Rgb::Zero();
+  Rgb specular = Rgb::Ones();
+  for (const int j : chain) specular = specular.cwiseProduct(pieces_[j].specular);
+  const Rgb visible = mean_over_samples(shooter, key, side, [&](const Vec3& y) {
+    Vec3 from = x, target = image_of(y);
+    Rgb passed = Rgb::Ones();
+    for (const int j : chain) {
+      const MirrorPiece& m = pieces_[j];
+      const double hf = m.height(from), ht = m.height(target);
+      if (!(hf > 0 && ht < 0)) {
+        passed = Rgb::Zero();
+        break;
+      }
+      const Vec3 p = from + (hf / (hf - ht)) * (target - from);
+      if (!in_outline(m, p)) {
+        passed = Rgb::Zero();
+        break;
+      }
+      passed = passed.cwiseProduct(leg(from, p));
+      from = p;
+      target = m.reflect(target);
+    }
+    if (passed != Rgb::Zero()) passed = passed.cwiseProduct(leg(from, y));
+    return passed;
+  });
+  return specular.cwiseProduct(ff * visible);
+}
+
+/// The mean of pass(y) over the shadow-ray samples y of the shooter: side^2 strata of its
+/// parameter square, jittered from the stream `key` selects.
+template <typename Pass>
+Rgb Shooter::mean_over_samples(const Patch& shooter, uint64_t key, int side,
+                               const Pass& pass) const {
+  uint64_t state = splitmix64(seed_ ^ splitmix64(key));
+  Rgb sum = Rgb::Zero();
+  for (int a = 0; a < side; ++a) {
+    for (int b = 0; b < side; ++b) {
+      const double u = (a + next_uniform(state)) / side, v = (b + next_uniform(state)) / side;
+      sum += pass(patch_point(shooter, u, v));
+    }
+  }
+  return sum / (side * side);
+}
+
+/// What passes between two points (not counting surfaces within epsilon of either end; the
+/// far end with a relative margin too, for grazing rays, whose float hit distance is least
+/// precise).
+Rgb Shooter::leg(const Vec3& a, const Vec3& b) const {
+  const Vec3 d = b - a;
+  const double distance = d.norm();
+  if (!(distance > 2 * epsilon_)) return Rgb::Ones();
+  return caster_.transmittance({a, d / distance}, epsilon_, distance * (1 - 1e-6) - epsilon_,
+                               epsilon_);
+}
+
+Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
+                                uint64_t key, int side) const {
+  if (polygon == shooter.polygon) return Rgb::Zero();  // a planar polygon cannot see itself
+  if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return Rgb::Zero();
+  const double ff = point_polygon_form_factor(x, n, shooter.corners);
+  if (!(ff > 0)) return Rgb::Zero();
+  ++pairs_;
+  // Nothing between them: every ray would pass, so cast none.
+  if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon)) {
+    ++unhidden_;
+    return Rgb::Constant(ff);
+  }
+  return ff * mean_over_samples(shooter, key, side, [&](const Vec3& y) { return leg(x, y); });
+}
+
+}  // namespace rad

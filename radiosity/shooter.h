@@ -1,0 +1,74 @@
+#pragma once
+/// What a shot delivers to one receiver point: the form factor from the point to a shooting
+/// patch times what passes along the shadow rays, directly and by way of the mirrors' images.
+#include <atomic>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "radiosity/shadow_culling.h"
+#include "radiosity/solution.h"
+#include "scene/mirror_pieces.h"
+#include "scene/ray_caster.h"
+
+namespace rad {
+
+struct Sphere {
+  Vec3 centre;
+  double radius;
+};
+/// The sphere about `centre` through the farthest of `corners`.
+Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre);
+
+/// A point of a patch at parametric (u, v) in [0, 1]^2: bilinear on quads; on triangles the
+/// square is folded onto the triangle (area-preserving up to the fold).
+Vec3 patch_point(const Patch& p, double u, double v);
+
+class Shooter {
+ public:
+  /// `epsilon`: surfaces this close to either end of a shadow ray are not counted.
+  Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon);
+
+  /// Form factor from a receiver point (on polygon `polygon`) to the patch, times the mean
+  /// over the shadow rays of what passes along each (0 or 1 through opaque polygons, the
+  /// product of the transmittances through filters, 000 §2.2), per channel; plus the same
+  /// from the patch's images in every chain of mirrors (000 §3: the image method), times the
+  /// chain's specular reflectance. `key` selects the jitter stream; `fewer` divides the side
+  /// of the square of shadow rays (at least one ray).
+  Rgb visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
+                          uint64_t key, int fewer = 1) const;
+
+  /// True when the point x (normal n) lies inside a closed object: every probe ray from just
+  /// above it meets the back of a polygon. Such points (a floor under a block standing on it)
+  /// neither receive nor radiate.
+  bool is_buried(const Vec3& x, const Vec3& n) const;
+
+  /// True when a probe ray from x (normal n) meets the front of a polygon closer than
+  /// `distance`: x lies near a concave junction or a contact.
+  bool faces_within(const Vec3& x, const Vec3& n, double distance) const;
+
+  /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
+  std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
+
+ private:
+  Rgb image_form_factor(const Vec3& x, const Vec3& n, const Patch& shooter,
+                        const std::vector<int>& chain, uint64_t key, int side) const;
+  template <typename Pass>
+  Rgb mean_over_samples(const Patch& shooter, uint64_t key, int side, const Pass& pass) const;
+  Rgb leg(const Vec3& a, const Vec3& b) const;
+  Rgb direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
+                         uint64_t key, int side) const;
+
+  const RayCaster& caster_;
+  ShadowCulling culling_;
+  double epsilon_;
+  bool cull_ = true;
+  mutable std::atomic<long long> pairs_{0}, unhidden_{0};
+  int side_ = 4;
+  uint64_t seed_ = 1;
+  double in_plane_ = 0;
+  std::vector<MirrorPiece> pieces_;
+  std::vector<std::vector<int>> chains_;  ///< Of at most Scene::mirror_depth reflections
+};
+
+}  // namespace rad
