@@ -8,12 +8,14 @@ NearField::NearField(size_t patches, const std::vector<Element>& elements) : roo
   for (size_t e = 0; e < elements.size(); ++e) {
     if (elements[e].parent < 0) roots_[elements[e].patch].push_back(static_cast<int>(e));
   }
-  grow(elements.size());
+  grow(elements);
 }
 
-void NearField::grow(size_t elements) {
-  stored_.resize(std::max(stored_.size(), elements));
-  used_.resize(std::max(used_.size(), elements));
+void NearField::grow(const std::vector<Element>& elements) {
+  for (size_t e = radius_.size(); e < elements.size(); ++e)
+    radius_.push_back(bounding_sphere(elements[e].corners, elements[e].centroid).radius);
+  stored_.resize(elements.size());
+  used_.resize(elements.size());
 }
 
 void NearField::average_up(const std::vector<Element>& elements, int patch,
@@ -35,54 +37,55 @@ Rgb NearField::gather(const std::vector<Element>& elements, int e, int patch,
                       const std::vector<Rgb>& density, const std::function<Rgb(int)>& measure,
                       bool record) {
   const Vec3& x = elements[e].centroid;
+  // The receiver's stored pairs, sorted by node (looked up once per piece per shot).
   std::vector<std::pair<int, Eigen::Vector3f>>& stored = stored_[e];
   if (record) used_[e].clear();
   Rgb h = Rgb::Zero();
-  const std::function<void(int)> visit = [&](int node) {
-    if (density[node] == Rgb::Zero()) return;
+  std::vector<int> stack(roots_[patch].rbegin(), roots_[patch].rend());
+  while (!stack.empty()) {
+    const int node = stack.back();
+    stack.pop_back();
+    if (density[node] == Rgb::Zero()) continue;
     const Element& piece = elements[node];
-    if (!piece.is_leaf() && is_near(x, bounding_sphere(piece.corners, piece.centroid))) {
-      for (int c = 0; c < 4; ++c) visit(piece.first_child + c);
-      return;
+    if (!piece.is_leaf() && is_near(x, {piece.centroid, radius_[node]})) {
+      for (int c = 3; c >= 0; --c) stack.push_back(piece.first_child + c);  // children in order
+      continue;
     }
+    const auto at = std::lower_bound(stored.begin(), stored.end(), node,
+                                     [](const auto& entry, int n) { return entry.first < n; });
     Rgb ff;
-    const auto found = std::find_if(stored.begin(), stored.end(),
-                                    [&](const auto& entry) { return entry.first == node; });
-    if (found != stored.end()) {
-      ff = found->second.cast<double>();
+    if (at != stored.end() && at->first == node) {
+      ff = at->second.cast<double>();
     } else {
       ff = measure(node);
-      stored.emplace_back(node, ff.cast<float>());
+      stored.insert(at, {node, ff.cast<float>()});
     }
     h += density[node].cwiseProduct(ff);
     if (record) used_[e].emplace_back(node, ff);
-  };
-  for (const int root : roots_[patch]) visit(root);
+  }
   return h;
 }
 
 Rgb NearField::far_density(const std::vector<Element>& elements, int patch,
                            const std::vector<int>& leaves, const std::vector<char>& near,
                            const std::vector<Rgb>& ff, double live_area,
-                           const std::vector<Rgb>& density, const Rgb& mean) const {
+                           const std::vector<Rgb>& density, const Rgb& mean) {
   Rgb uniform = Rgb::Zero();
-  std::vector<std::pair<int, Rgb>> sent;  // (node, sum of A_e FF over the near receivers)
+  // Per node, the sum of A_e FF(e, node) over the near receivers (scratch, zero between calls).
+  std::vector<Rgb>& sent = sent_;
+  sent.resize(elements.size(), Rgb::Zero());
+  std::vector<int> touched;
   for (const int e : leaves) {
     uniform += elements[e].area * ff[e];
     if (!near[e]) continue;
-    for (const auto& [node, f] : used_[e]) sent.emplace_back(node, elements[e].area * f);
+    for (const auto& [node, f] : used_[e]) {
+      if (sent[node] == Rgb::Zero()) touched.push_back(node);
+      sent[node] += elements[e].area * f;
+    }
   }
-  if (sent.empty()) return mean;
+  if (touched.empty()) return mean;
   uniform /= live_area;
-  std::sort(sent.begin(), sent.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
-  const auto sent_by = [&](int node) {
-    Rgb sum = Rgb::Zero();
-    auto it = std::lower_bound(sent.begin(), sent.end(), node,
-                               [](const auto& entry, int n) { return entry.first < n; });
-    for (; it != sent.end() && it->first == node; ++it) sum += it->second;
-    return sum;
-  };
+  const auto sent_by = [&](int node) { return sent[node]; };
   // Down the trees: each leaf's F_near is what the nodes above it sent per unit area.
   Rgb weighted = Rgb::Zero(), weights = Rgb::Zero();
   const std::function<void(int, Rgb)> visit = [&](int node, Rgb near_fraction) {
@@ -97,6 +100,7 @@ Rgb NearField::far_density(const std::vector<Element>& elements, int patch,
     for (int c = 0; c < 4; ++c) visit(n.first_child + c, near_fraction);
   };
   for (const int root : roots_[patch]) visit(root, Rgb::Zero());
+  for (const int node : touched) sent[node] = Rgb::Zero();
   Rgb out = mean;
   for (int c = 0; c < 3; ++c) {
     if (weights[c] > 0) out[c] = weighted[c] / weights[c];

@@ -32,8 +32,8 @@ class NearField {
   /// Records the top-level elements of every patch (`elements` as made by make_elements).
   NearField(size_t patches, const std::vector<Element>& elements);
 
-  /// Room for `elements` receivers. Serial.
-  void grow(size_t elements);
+  /// Room for every element made so far as a receiver and a piece. Serial.
+  void grow(const std::vector<Element>& elements);
 
   /// Fills the inner nodes of a patch's trees with the area-weighted mean of `value` over their
   /// leaves.
@@ -60,12 +60,14 @@ class NearField {
   /// node) / A_node). Returns `mean` when no receiver is near.
   Rgb far_density(const std::vector<Element>& elements, int patch, const std::vector<int>& leaves,
                   const std::vector<char>& near, const std::vector<Rgb>& ff, double live_area,
-                  const std::vector<Rgb>& density, const Rgb& mean) const;
+                  const std::vector<Rgb>& density, const Rgb& mean);
 
  private:
   std::vector<std::vector<int>> roots_;  ///< Per patch, its top-level elements
   std::vector<std::vector<std::pair<int, Eigen::Vector3f>>> stored_;  ///< Per receiver
   std::vector<std::vector<std::pair<int, Rgb>>> used_;                ///< Per receiver
+  std::vector<Rgb> sent_;       ///< far_density's scratch, per node
+  std::vector<double> radius_;  ///< Per element, its bounding radius about its centroid
 };
 
 }  // namespace rad

@@ -239,10 +239,12 @@ class ProgressiveSolver {
   /// centroid is, and buried elements neither receive nor split.
   void find_buried() {
     buried_.assign(elements().size(), 0);
+    long_enough_.assign(elements().size(), 0);
     near_contact_.assign(elements().size(), 0);
     tbb::parallel_for(size_t(0), elements().size(), [&](size_t e) {
       const Element& el = elements()[e];
       buried_[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
+      long_enough_[e] = longest_edge(el.corners) > min_size_;
       near_contact_[e] = near_a_contact(el);
     });
     constexpr int grid = 8;
@@ -266,9 +268,9 @@ class ProgressiveSolver {
   double limit(double local_radiosity) const {
     return settings_.refine_threshold * std::clamp(local_radiosity, 0.1 * reference_, reference_);
   }
-  bool splittable(int e) const {
-    return !buried_[e] && longest_edge(solution_.elements[e].corners) > min_size_;
-  }
+  /// Not buried and longer than the smallest element (the test runs for every candidate of
+  /// every shot, so the length is taken once, when the element is made).
+  bool splittable(int e) const { return !buried_[e] && long_enough_[e]; }
   void split_into(int e, std::vector<int>& children) {
     split_element(elements(), e);
     const int first = elements()[e].first_child;
@@ -286,6 +288,8 @@ class ProgressiveSolver {
       back_irradiance_[first + c] = back_irradiance_[e];  // inherited, as the front's is
       const Element& child = elements()[first + c];
       buried_[first + c] = rays_.is_buried(child.centroid, solution_.patches[child.patch].normal);
+      long_enough_.resize(elements().size(), 0);
+      long_enough_[first + c] = longest_edge(child.corners) > min_size_;
       near_contact_.resize(elements().size(), 0);
       near_contact_[first + c] = near_a_contact(child);
     }
@@ -295,11 +299,11 @@ class ProgressiveSolver {
     return rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal, el.polygon,
                                      source, key, fewer);
   }
-  /// Elements near a concave junction or a contact (another polygon's front within 1.5 times
-  /// their size) are split by the constant-radiosity test (see refine_during_shot).
+  /// Elements near a concave junction or a contact (another polygon's front within their
+  /// size) are split by the constant-radiosity test (see refine_during_shot).
   bool near_a_contact(const Element& el) const {
     return rays_.faces_within(el.centroid, solution_.patches[el.patch].normal,
-                              1.5 * longest_edge(el.corners));
+                              longest_edge(el.corners));
   }
 
   /// The visible form factor from element e to a node of a patch's tree, for the near field:
@@ -380,7 +384,7 @@ class ProgressiveSolver {
   void receive(const std::vector<int>& which, int shooter, int shot) {
     const Patch& source = solution_.patches[shooter];
     store_.grow(shooter, patches().size(), elements().size());
-    near_field_.grow(elements().size());
+    near_field_.grow(elements());
     ff_.resize(elements().size(), Rgb::Zero());
     incoming_.resize(elements().size(), Rgb::Zero());
     back_ff_.resize(elements().size(), Rgb::Zero());
@@ -486,7 +490,7 @@ class ProgressiveSolver {
       if (patches()[j].shot != Rgb::Zero())
         store_.grow(static_cast<int>(j), patches().size(), elements().size());
     }
-    near_field_.grow(elements().size());
+    near_field_.grow(elements());
     tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
       const Element& el = elements()[children[k]];
       if (buried_[children[k]]) return;  // receives nothing
@@ -541,6 +545,7 @@ class ProgressiveSolver {
   std::vector<Sphere> patch_bounds_;
   std::vector<double> live_area_;   ///< Per patch: its area outside closed objects
   std::vector<char> buried_;        ///< Per element: its centroid is inside a closed object
+  std::vector<char> long_enough_;   ///< Per element: longer than the smallest element
   std::vector<char> near_contact_;  ///< Per element: another polygon's front is near
   /// Per element, radiosity received and not yet shot, and shot so far (meaningful on leaves;
   /// a patch's unshot radiosity is their mean over its live area), and what it shoots now.

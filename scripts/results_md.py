@@ -89,6 +89,38 @@ def main():
         w("|---|---|")
         w("| ![error map, hemisphere T=0.2](images/results/error_map_hemisphere_T0.2.png) | ![error map, Monte Carlo 1024](images/results/error_map_montecarlo_N1024.png) |")
         w("")
+    w("## The global solution against the path tracer")
+    w("")
+    w("From [`bench/results/global_accuracy.md`](../bench/results/global_accuracy.md)")
+    w("(`bash bench/global_accuracy.sh`): the solve at each patch size, then the exact local pass at")
+    w("each scene's accuracy points against their path-traced irradiance (relative errors per point")
+    w("and channel); every point's error at the default settings is in that file. What limits the")
+    w("accuracy: [algorithms.md](algorithms.md#how-accurate-the-global-solution-is-and-what-it-costs).")
+    w("")
+    if os.path.exists("bench/results/global_accuracy.md"):
+        scene, tables = None, []
+        lines = open("bench/results/global_accuracy.md").read().split("\n")
+        for i, line in enumerate(lines):
+            if line.startswith("- machine") or line.startswith("- commit"):
+                w(line)
+            if line.startswith("## "):
+                scene = line
+                tables.append((scene, []))
+            elif line.startswith("|") and tables and (i == 0 or not lines[i - 1].startswith("At the default")):
+                rows = tables[-1][1]
+                # the first table of each scene: the patch sizes
+                if not rows or rows[-1] is not None:
+                    rows.append(line)
+            elif tables and tables[-1][1] and tables[-1][1][-1] is not None:
+                tables[-1][1].append(None)  # the first table ended
+        w("")
+        for scene, rows in tables:
+            w("#" + scene)
+            w("")
+            out.extend(r for r in rows if r is not None)
+            w("")
+        w("![error against solve time](images/global-accuracy.png)")
+        w("")
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")
