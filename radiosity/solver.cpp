@@ -63,6 +63,7 @@ class ProgressiveSolver {
         diagonal_(scene_.bounds().diagonal()),
         reference_(reference_radiosity(scene_)),
         min_size_(settings.min_element_size * diagonal_),
+        contact_size_(std::max(min_size_, settings.patch_size * diagonal_ / 16)),
         rays_(caster, settings, 1e-5 * diagonal_) {  // offsets ~100x float precision
     solution_.settings = settings;
     solution_.patches = make_patches(scene_, settings.patch_size * diagonal_);
@@ -444,6 +445,10 @@ class ProgressiveSolver {
             gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
         if (scale * ff_max <= lim) return;
         // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
+        // Near a contact, down to a sixteenth of the patch size (the patch size stays the one
+        // knob of the mesh's resolution: coarse patches do not refine every concave edge to
+        // the smallest element).
+        const bool constant_test = near_contact_[e] && longest_edge(el.corners) > contact_size_;
         double off = 0;
         Rgb mean = Rgb::Zero();
         for (size_t c = 0; c < el.corners.size(); ++c) {
@@ -451,13 +456,13 @@ class ProgressiveSolver {
           const Rgb at_corner = rays_.visible_form_factor(
               x, solution_.patches[el.patch].normal, el.polygon, source,
               stream_key(shot, e, StreamKind::corner, static_cast<int>(c)));
-          if (near_contact_[e]) {
+          if (constant_test) {
             off = std::max(off, (ff_[e] - at_corner).cwiseAbs().maxCoeff());
           } else {
             mean += at_corner;
           }
         }
-        if (!near_contact_[e])
+        if (!constant_test)
           off = (ff_[e] - mean / static_cast<double>(el.corners.size())).cwiseAbs().maxCoeff();
         split[k] = scale * off > lim;
       });
@@ -540,6 +545,7 @@ class ProgressiveSolver {
   const double diagonal_;
   const double reference_;
   const double min_size_;
+  const double contact_size_;  ///< Elements near contacts no smaller than this by the constant test
   Solution solution_;
   const Shooter rays_;
   std::vector<Sphere> patch_bounds_;
