@@ -7,7 +7,8 @@
 # but does not let a new, unrelated finding in a third-party reader block every change).
 # Usage: bash fuzz/run.sh [FUZZ_BUILD_DIR] [SECONDS] [RADIOSITY]   (a build configured with
 # -DRAD_FUZZ=ON; RADIOSITY, the executable that makes the seed solution and image, default
-# build/cli/radiosity). FUZZ_TARGETS (space-separated) runs only those targets; FUZZ_RUNS stops
+# build/cli/radiosity). FUZZ_TARGETS (space-separated) runs only those targets; FUZZ_JOBS runs
+# that many at a time (default 1; make fuzz runs two, one per core); FUZZ_RUNS stops
 # each target after that many executions too (whichever comes first); FUZZ_NO_HEADER=1 leaves
 # out the table's header (fuzz/campaign.sh joins the rows of parallel runs).
 set -uo pipefail
@@ -45,10 +46,27 @@ if [ "${FUZZ_NO_HEADER:-0}" != 1 ]; then
   echo "| target | seconds | executions | corpus files | result |"
   echo "|---|---|---|---|---|"
 fi
+targets=${FUZZ_TARGETS:-fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
+fuzz_points fuzz_solution fuzz_exr}
+# FUZZ_JOBS > 1: that many targets at a time, each a run of this script on one target (the
+# corpus is seeded above, once); the rows are printed in the targets' order.
+jobs=${FUZZ_JOBS:-1}
+if [ "$jobs" -gt 1 ]; then
+  rows=$(mktemp -d)
+  trap 'rm -rf "$rows"' EXIT
+  export build seconds radiosity rows
+  printf '%s\n' $targets | xargs -P "$jobs" -I{} bash -c \
+    'FUZZ_JOBS=1 FUZZ_TARGETS={} FUZZ_NO_HEADER=1 bash fuzz/run.sh "$build" "$seconds" "$radiosity" \
+       >"$rows/{}.md"; echo $? >"$rows/{}.status"'
+  for target in $targets; do
+    cat "$rows/$target.md"
+    [ "$(cat "$rows/$target.status")" = 0 ] || status=1
+  done
+  exit $status
+fi
 runs=()
 [ -n "${FUZZ_RUNS:-}" ] && runs=(-runs="$FUZZ_RUNS")
-for target in ${FUZZ_TARGETS:-fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
-              fuzz_points fuzz_solution fuzz_exr}; do
+for target in $targets; do
   exe=$build/fuzz/$target
   dict=()
   [ "$target" = fuzz_scene ] && dict=(-dict=fuzz/scene.dict)
