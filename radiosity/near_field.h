@@ -46,6 +46,9 @@ class NearField {
   Rgb gather(const std::vector<Element>& elements, int e, int patch,
              const std::vector<Rgb>& density, const std::function<Rgb(int)>& measure, bool record);
 
+  /// Element e's bounding radius about its centroid (kept since grow()).
+  double radius(int e) const { return radius_[e]; }
+
   /// The pieces receiver e used in its last recorded gather.
   const std::vector<std::pair<int, Rgb>>& used(int e) const { return used_[e]; }
 

@@ -3,6 +3,7 @@
 /// patch times what passes along the shadow rays, directly and by way of the mirrors' images.
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -53,9 +54,13 @@ class Shooter {
  private:
   Rgb image_form_factor(const Vec3& x, const Vec3& n, const Patch& shooter,
                         const std::vector<int>& chain, uint64_t key, int side) const;
+  template <typename Visit>
+  void for_each_sample(const Patch& shooter, uint64_t key, int side, const Visit& visit) const;
   template <typename Pass>
   Rgb mean_over_samples(const Patch& shooter, uint64_t key, int side, const Pass& pass) const;
+  std::optional<RayCaster::Segment> leg_segment(const Vec3& a, const Vec3& b) const;
   Rgb leg(const Vec3& a, const Vec3& b) const;
+  double visible_fraction(const Vec3& x, const Patch& shooter, uint64_t key, int side) const;
   Rgb direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                          uint64_t key, int side) const;
 

@@ -439,7 +439,7 @@ class ProgressiveSolver {
         if (scale <= lim || !splittable(e)) return;
         // Largest possible form factor from this element to the shooter (bounding spheres):
         // skip pairs that cannot reach the limit.
-        const Sphere eb = bounding_sphere(el.corners, el.centroid);
+        const Sphere eb{el.centroid, near_field_.radius(e)};
         const double gap = (eb.centre - sb.centre).norm() - eb.radius - sb.radius;
         const double ff_max =
             gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;

@@ -135,6 +135,20 @@ bool RayCaster::occluded(const Ray& ray, double t_min, double t_max) const {
   return r.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
 
+void RayCaster::occluded(const std::vector<Segment>& segments, std::vector<char>& blocked) const {
+  thread_local std::vector<RTCRay> rays;
+  rays.resize(segments.size());
+  for (size_t i = 0; i < segments.size(); ++i)
+    rays[i] = to_embree(segments[i].ray, segments[i].t_min, segments[i].t_max);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcOccluded1M(impl_->rtc_scene, &context, rays.data(), static_cast<unsigned>(rays.size()),
+                sizeof(RTCRay));
+  blocked.resize(segments.size());
+  for (size_t i = 0; i < segments.size(); ++i) blocked[i] = rays[i].tfar < 0;
+}
+
 Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double gap) const {
   if (!has_filters_) return occluded(ray, t_min, t_max) ? Rgb::Zero() : Rgb::Ones();
   Rgb passed = Rgb::Ones();

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "scene/ray.h"
 #include "scene/scene.h"
@@ -36,6 +37,16 @@ class RayCaster {
 
   /// True when any polygon intersects the ray with t in [t_min, t_max].
   bool occluded(const Ray& ray, double t_min, double t_max) const;
+
+  /// A ray over t in [t_min, t_max], for the queries of many rays at once.
+  struct Segment {
+    Ray ray;
+    double t_min, t_max;
+  };
+  /// occluded() of each segment, as one coherent stream (Embree's rtcOccluded1M traces rays
+  /// that share an origin as packets): blocked[i] is 1 when some polygon meets segment i. The
+  /// answers are occluded()'s.
+  void occluded(const std::vector<Segment>& segments, std::vector<char>& blocked) const;
 
   /// What passes along the ray over t in [t_min, t_max], per channel: the product of the
   /// transmittances of the polygons it crosses (filters, 000 §2.2), 0 at the first opaque one,

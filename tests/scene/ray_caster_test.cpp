@@ -142,6 +142,42 @@ TEST(RayCaster, MatchesBruteForceInsideCornellBox) {
   compare_with_brute_force(scene, rng, Vec3(10, 10, 10), Vec3(546, 538, 549), 10000);
 }
 
+TEST(RayCaster, AStreamOfSegmentsGetsTheAnswersOfOneRayAtATime) {
+  // The solver's shadow rays: from a point to 16 points spread over a region, as one stream
+  // (packets inside Embree); each answer must be the single query's, blocked or not.
+  const Scene scene =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
+  const RayCaster caster(scene);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  const auto inside = [&] { return Vec3(10 + 536 * u(rng), 10 + 528 * u(rng), 10 + 539 * u(rng)); };
+  int blocked_count = 0, total = 0;
+  std::vector<RayCaster::Segment> segments;
+  std::vector<char> blocked;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 x = inside(), centre = inside();
+    segments.clear();
+    for (int k = 0; k < 16; ++k) {
+      const Vec3 d = centre + Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 100 - x;
+      segments.push_back({{x, d.normalized()}, 1e-3, d.norm() * (1 - 1e-6) - 1e-3});
+    }
+    caster.occluded(segments, blocked);
+    ASSERT_EQ(blocked.size(), segments.size());
+    for (size_t k = 0; k < segments.size(); ++k) {
+      const RayCaster::Segment& s = segments[k];
+      EXPECT_EQ(bool(blocked[k]), caster.occluded(s.ray, s.t_min, s.t_max)) << i << " " << k;
+      blocked_count += blocked[k];
+      ++total;
+    }
+  }
+  // Both answers occur often enough for the comparison to mean something.
+  EXPECT_GT(blocked_count, total / 20);
+  EXPECT_LT(blocked_count, total - total / 20);
+  segments.clear();
+  caster.occluded(segments, blocked);
+  EXPECT_TRUE(blocked.empty());
+}
+
 TEST(RayCaster, RespectsDistanceInterval) {
   Scene scene;
   scene.materials.push_back(Material{"m", Rgb::Constant(0.5), Rgb::Zero()});
