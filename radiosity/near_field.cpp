@@ -1,6 +1,7 @@
 #include "radiosity/near_field.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace rad {
 
@@ -18,24 +19,48 @@ void NearField::grow(const std::vector<Element>& elements) {
   used_.resize(elements.size());
 }
 
-void NearField::average_up(const std::vector<Element>& elements, int patch,
-                           std::vector<Rgb>& value) const {
-  const std::function<void(int)> visit = [&](int node) {
+double NearField::average_up(const std::vector<Element>& elements, int patch,
+                             std::vector<Rgb>& value, std::vector<float>& spread,
+                             const std::vector<char>& buried) const {
+  spread.resize(elements.size(), 0.0f);
+  const double infinite = std::numeric_limits<double>::infinity();
+  // Per subtree: its live leaves' least and largest value (a subtree with none: +inf, -inf).
+  struct Range {
+    Rgb least, largest;
+  };
+  const std::function<Range(int)> visit = [&](int node) -> Range {
     const Element& n = elements[node];
-    if (n.is_leaf()) return;
+    if (n.is_leaf()) {
+      if (buried[node]) return {Rgb::Constant(infinite), Rgb::Constant(-infinite)};
+      return {value[node], value[node]};
+    }
     Rgb sum = Rgb::Zero();
+    Range range{Rgb::Constant(infinite), Rgb::Constant(-infinite)};
     for (int c = 0; c < 4; ++c) {
-      visit(n.first_child + c);
+      const Range child = visit(n.first_child + c);
+      range.least = range.least.cwiseMin(child.least);
+      range.largest = range.largest.cwiseMax(child.largest);
       sum += value[n.first_child + c] * elements[n.first_child + c].area;
     }
     value[node] = sum / n.area;
+    spread[node] = range.least[0] <= range.largest[0]
+                       ? static_cast<float>((range.largest - range.least).maxCoeff())
+                       : 0.0f;
+    return range;
   };
-  for (const int root : roots_[patch]) visit(root);
+  Range whole{Rgb::Constant(infinite), Rgb::Constant(-infinite)};
+  for (const int root : roots_[patch]) {
+    const Range r = visit(root);
+    whole.least = whole.least.cwiseMin(r.least);
+    whole.largest = whole.largest.cwiseMax(r.largest);
+  }
+  if (!(whole.least[0] <= whole.largest[0])) return 0;
+  return (whole.largest - whole.least).maxCoeff();
 }
 
 Rgb NearField::gather(const std::vector<Element>& elements, int e, int patch,
-                      const std::vector<Rgb>& density, const std::function<Rgb(int)>& measure,
-                      bool record) {
+                      const std::vector<Rgb>& density, const std::vector<float>& spread,
+                      double tolerated, const std::function<Rgb(int)>& measure, bool record) {
   const Vec3& x = elements[e].centroid;
   // The receiver's stored pairs, sorted by node (looked up once per piece per shot).
   std::vector<std::pair<int, Eigen::Vector3f>>& stored = stored_[e];
@@ -47,7 +72,9 @@ Rgb NearField::gather(const std::vector<Element>& elements, int e, int patch,
     stack.pop_back();
     if (density[node] == Rgb::Zero()) continue;
     const Element& piece = elements[node];
-    if (!piece.is_leaf() && is_near(x, {piece.centroid, radius_[node]})) {
+    const Sphere bounds{piece.centroid, radius_[node]};
+    if (!piece.is_leaf() &&
+        (is_near(x, bounds) || needs_pieces(x, bounds, piece.area, spread[node], tolerated))) {
       for (int c = 3; c >= 0; --c) stack.push_back(piece.first_child + c);  // children in order
       continue;
     }

@@ -318,8 +318,21 @@ class ProgressiveSolver {
     part.area = piece.area;
     return visible_ff(solution_.elements[e], part, stream_key(shot, e, StreamKind::near, node), 2);
   }
-  bool is_near(const Element& el, int patch) const {
-    return NearField::is_near(el.centroid, patch_bounds_[patch]);
+  /// Whether receiver e gathers `patch` piece by piece: near it, or where its spread could
+  /// make it off by more than the receiver tolerates (near_tolerance).
+  bool is_near(int e, int patch, double spread) const {
+    const Element& el = solution_.elements[e];
+    return NearField::is_near(el.centroid, patch_bounds_[patch]) ||
+           NearField::needs_pieces(el.centroid, patch_bounds_[patch], solution_.patches[patch].area,
+                                   spread, near_tolerance(e));
+  }
+  /// The irradiance error receiver e tolerates from a piece taken as uniform: a share of the
+  /// refinement limit at its radiosity (NearField::limit_share), through its reflectance.
+  double near_tolerance(int e) const {
+    const Element& el = solution_.elements[e];
+    const double rho = material(el.polygon).reflectance.maxCoeff();
+    if (!(rho > 0)) return std::numeric_limits<double>::infinity();
+    return NearField::limit_share * limit(el.radiosity.cwiseAbs().maxCoeff()) / rho;
   }
 
   /// One shot of patch `shooter`'s unshot radiosity to every leaf.
@@ -335,7 +348,8 @@ class ProgressiveSolver {
       leaf_shot_[l] += leaf_unshot_[l];
       leaf_unshot_[l] = Rgb::Zero();
     }
-    near_field_.average_up(elements(), shooter, shooting_);
+    shooting_spread_ =
+        near_field_.average_up(elements(), shooter, shooting_, shooting_node_spread_, buried_);
 
     // Receive at every leaf's centroid; split where this shot is far from linear.
     back_irradiance_.resize(elements().size(), Rgb::Zero());
@@ -394,10 +408,10 @@ class ProgressiveSolver {
       const int e = which[k];
       if (buried_[e]) return;  // stays zero
       ff_[e] = stored_form_factor(shooter, e, stream_key(shot, e, StreamKind::centre, 0));
-      near_[e] = is_near(elements()[e], shooter);
+      near_[e] = is_near(e, shooter, shooting_spread_);
       if (near_[e]) {
         incoming_[e] = near_field_.gather(
-            elements(), e, shooter, shooting_,
+            elements(), e, shooter, shooting_, shooting_node_spread_, near_tolerance(e),
             [&](int node) { return piece_form_factor(e, node, shot); }, true);
       } else {
         incoming_[e] = far_density_.cwiseProduct(ff_[e]);
@@ -489,8 +503,11 @@ class ProgressiveSolver {
   void regather(const std::vector<int>& children) {
     const int shot = stats().shots;
     std::vector<Rgb> gathered(children.size(), Rgb::Zero()), back(children.size(), Rgb::Zero());
-    for (size_t j = 0; j < patches().size(); ++j)
-      near_field_.average_up(elements(), static_cast<int>(j), leaf_shot_);
+    shot_spread_.resize(patches().size());
+    for (size_t j = 0; j < patches().size(); ++j) {
+      shot_spread_[j] = near_field_.average_up(elements(), static_cast<int>(j), leaf_shot_,
+                                               shot_node_spread_, buried_);
+    }
     for (size_t j = 0; j < patches().size(); ++j) {
       if (patches()[j].shot != Rgb::Zero())
         store_.grow(static_cast<int>(j), patches().size(), elements().size());
@@ -503,10 +520,10 @@ class ProgressiveSolver {
       for (size_t j = 0; j < solution_.patches.size(); ++j) {
         const Patch& p = solution_.patches[j];
         if (p.shot == Rgb::Zero()) continue;
-        if (is_near(el, static_cast<int>(j))) {
+        if (is_near(children[k], static_cast<int>(j), shot_spread_[j])) {
           const int e = children[k];
           gathered[k] += near_field_.gather(
-              elements(), e, static_cast<int>(j), leaf_shot_,
+              elements(), e, static_cast<int>(j), leaf_shot_, shot_node_spread_, near_tolerance(e),
               [&](int node) { return piece_form_factor(e, node, shot); }, false);
         } else {
           gathered[k] += p.shot.cwiseProduct(stored_form_factor(
@@ -556,6 +573,11 @@ class ProgressiveSolver {
   /// Per element, radiosity received and not yet shot, and shot so far (meaningful on leaves;
   /// a patch's unshot radiosity is their mean over its live area), and what it shoots now.
   std::vector<Rgb> leaf_unshot_, leaf_shot_, shooting_;
+  /// The spread (NearField::average_up) of the shooter and its nodes as they shoot now, and of
+  /// every patch and node as what they have shot so far (for re-gathers).
+  double shooting_spread_ = 0;
+  std::vector<float> shooting_node_spread_, shot_node_spread_;
+  std::vector<double> shot_spread_;
   NearField near_field_{0, {}};
   FormFactorStore store_{size_t(1) << 30};  ///< 1 GiB
   std::vector<Rgb> incoming_;               ///< This shot's irradiance per element
