@@ -70,7 +70,9 @@ cat <<'TAIL'
 ## Sanitizers
 
 `make sanitize` builds the whole project and its tests with `-fsanitize=address,undefined`
-(`build-sanitize`) and runs the suite; CI runs it after the normal suite. Leaks are checked by
+(`build-sanitize`) and runs the suite, less the few tests that only repeat default solves of
+whole scenes to check their numbers (`SANITIZE_EXCLUDE` in the Makefile; every code path they
+run is run by tests that stay in); CI runs it after the normal suite. Leaks are checked by
 the fuzz runs (every reader); the suite runs without leak detection, because Mesa's OpenGL
 driver, loaded by VTK's offscreen rendering, leaks from a module it unloads.
 

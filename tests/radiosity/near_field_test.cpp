@@ -81,9 +81,9 @@ TEST(NearField, APieceLeftWholeIsOffByNoMoreThanWhatNeedsPiecesTolerates) {
     const double whole = field.average_up(s.elements, 0, value, spread, buried);
     double mean = 0, off = 0;
     const double height = 0.01 * std::pow(2000.0, u(rng));  // to 20
-    const Vec3 x = worst ? Vec3(s.elements[bright].centroid.x(), s.elements[bright].centroid.y(),
-                                height)
-                         : Vec3(-1 + 3 * u(rng), -1 + 3 * u(rng), height);
+    const Vec3 x =
+        worst ? Vec3(s.elements[bright].centroid.x(), s.elements[bright].centroid.y(), height)
+              : Vec3(-1 + 3 * u(rng), -1 + 3 * u(rng), height);
     const Vec3 n = worst ? Vec3(0, 0, -1)  // facing the square
                          : Vec3(u(rng) - 0.5, u(rng) - 0.5, -1).normalized();
     for (size_t e = 0; e < s.elements.size(); ++e) {
