@@ -73,6 +73,21 @@ class NearField {
              const std::vector<Rgb>& density, const std::vector<float>& spread, double tolerated,
              const std::function<Rgb(int)>& measure, bool record);
 
+  /// f(leaf) for each leaf of a patch's trees.
+  template <typename F>
+  void for_each_leaf(const std::vector<Element>& elements, int patch, const F& f) const {
+    std::vector<int> stack(roots_[patch].rbegin(), roots_[patch].rend());
+    while (!stack.empty()) {
+      const int node = stack.back();
+      stack.pop_back();
+      if (elements[node].is_leaf()) {
+        f(node);
+      } else {
+        for (int c = 3; c >= 0; --c) stack.push_back(elements[node].first_child + c);
+      }
+    }
+  }
+
   /// Element e's bounding radius about its centroid (kept since grow()).
   double radius(int e) const { return radius_[e]; }
 

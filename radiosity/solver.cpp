@@ -1,6 +1,8 @@
 #include "radiosity/solver.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -82,6 +84,7 @@ class ProgressiveSolver {
     }
     for (Element& e : elements()) e.radiosity = material(e.polygon).emission;
     near_field_ = NearField(patches().size(), elements());
+    shot_spread_.assign(patches().size(), 0.0);
     leaf_unshot_.resize(elements().size());
     leaf_shot_.assign(elements().size(), Rgb::Zero());
     shooting_.assign(elements().size(), Rgb::Zero());
@@ -280,6 +283,8 @@ class ProgressiveSolver {
     leaf_unshot_.resize(elements().size(), Rgb::Zero());
     leaf_shot_.resize(elements().size(), Rgb::Zero());
     shooting_.resize(elements().size(), Rgb::Zero());
+    shooting_node_spread_.resize(elements().size(), 0.0f);
+    shot_node_spread_.resize(elements().size(), 0.0f);
     for (int c = 0; c < 4; ++c) {
       children.push_back(first + c);
       // The same density over each part: what the element held, shot and is to shoot.
@@ -342,14 +347,17 @@ class ProgressiveSolver {
     source.unshot = Rgb::Zero();
     const int shot = stats().shots;
     // The pieces the near field is shot from, with what each has not shot yet.
-    for (const int l : leaves_) {
-      if (elements()[l].patch != shooter) continue;
+    near_field_.for_each_leaf(elements(), shooter, [&](int l) {
       shooting_[l] = leaf_unshot_[l];
       leaf_shot_[l] += leaf_unshot_[l];
       leaf_unshot_[l] = Rgb::Zero();
-    }
+    });
     shooting_spread_ =
         near_field_.average_up(elements(), shooter, shooting_, shooting_node_spread_, buried_);
+    // What the shooter has shot so far, for re-gathers: only its leaves changed. (A split
+    // leaves a tree's means and spreads as they were: children hold their parent's value.)
+    shot_spread_[shooter] =
+        near_field_.average_up(elements(), shooter, leaf_shot_, shot_node_spread_, buried_);
 
     // Receive at every leaf's centroid; split where this shot is far from linear.
     back_irradiance_.resize(elements().size(), Rgb::Zero());
@@ -397,28 +405,38 @@ class ProgressiveSolver {
   /// same jitter), so repeated shots cast no rays. The store is kept while it fits in
   /// form_factor_budget bytes; beyond that, patches measure afresh each time.
   void receive(const std::vector<int>& which, int shooter, int shot) {
-    const Patch& source = solution_.patches[shooter];
     store_.grow(shooter, patches().size(), elements().size());
     near_field_.grow(elements());
     ff_.resize(elements().size(), Rgb::Zero());
     incoming_.resize(elements().size(), Rgb::Zero());
     back_ff_.resize(elements().size(), Rgb::Zero());
     near_.resize(elements().size(), 0);
-    tbb::parallel_for(size_t(0), which.size(), [&](size_t k) {
-      const int e = which[k];
-      if (buried_[e]) return;  // stays zero
-      ff_[e] = stored_form_factor(shooter, e, stream_key(shot, e, StreamKind::centre, 0));
-      near_[e] = is_near(e, shooter, shooting_spread_);
-      if (near_[e]) {
-        incoming_[e] = near_field_.gather(
-            elements(), e, shooter, shooting_, shooting_node_spread_, near_tolerance(e),
-            [&](int node) { return piece_form_factor(e, node, shot); }, true);
-      } else {
-        incoming_[e] = far_density_.cwiseProduct(ff_[e]);
-      }
-      if (absorbs_at_back(elements()[e].polygon))
-        back_ff_[e] = back_ff(elements()[e], source, stream_key(shot, e, StreamKind::back, 0));
-    });
+    // Small fixed chunks: a few receivers (those near the shooter, those measured for the
+    // first time) cost far more than the rest, and sit together in element order.
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, which.size(), 16),
+        [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t k = range.begin(); k != range.end(); ++k) receive_at(which[k], shooter, shot);
+        },
+        tbb::simple_partitioner());
+  }
+
+  /// receive() at one leaf.
+  void receive_at(int e, int shooter, int shot) {
+    if (buried_[e]) return;  // stays zero
+    ff_[e] = stored_form_factor(shooter, e, stream_key(shot, e, StreamKind::centre, 0));
+    near_[e] = is_near(e, shooter, shooting_spread_);
+    if (near_[e]) {
+      incoming_[e] = near_field_.gather(
+          elements(), e, shooter, shooting_, shooting_node_spread_, near_tolerance(e),
+          [&](int node) { return piece_form_factor(e, node, shot); }, true);
+    } else {
+      incoming_[e] = far_density_.cwiseProduct(ff_[e]);
+    }
+    if (absorbs_at_back(elements()[e].polygon)) {
+      back_ff_[e] = back_ff(elements()[e], solution_.patches[shooter],
+                            stream_key(shot, e, StreamKind::back, 0));
+    }
   }
 
   /// The visible form factor from element e to patch `shooter`: stored, or measured now (and
@@ -441,6 +459,7 @@ class ProgressiveSolver {
     const Patch& source = patches()[shooter];
     const Sphere& sb = patch_bounds_[shooter];
     std::vector<int> candidates = leaves_;
+    bool any_split = false;
     while (!candidates.empty()) {
       std::vector<char> split(candidates.size(), 0);
       tbb::parallel_for(size_t(0), candidates.size(), [&](size_t k) {
@@ -485,13 +504,14 @@ class ProgressiveSolver {
         if (split[k]) split_into(candidates[k], children);
       }
       if (children.empty()) break;
+      any_split = true;
       ff_.resize(elements().size(), Rgb::Zero());
       back_ff_.resize(elements().size(), Rgb::Zero());
       receive(children, shooter, shot);
       regather(children);
       candidates = std::move(children);
     }
-    leaves_ = solution_.leaves();
+    if (any_split) leaves_ = solution_.leaves();
   }
 
   /// A new child re-gathers everything shot so far, H = sum_j S_j FF(x, patch j), with S_j the
@@ -503,11 +523,6 @@ class ProgressiveSolver {
   void regather(const std::vector<int>& children) {
     const int shot = stats().shots;
     std::vector<Rgb> gathered(children.size(), Rgb::Zero()), back(children.size(), Rgb::Zero());
-    shot_spread_.resize(patches().size());
-    for (size_t j = 0; j < patches().size(); ++j) {
-      shot_spread_[j] = near_field_.average_up(elements(), static_cast<int>(j), leaf_shot_,
-                                               shot_node_spread_, buried_);
-    }
     for (size_t j = 0; j < patches().size(); ++j) {
       if (patches()[j].shot != Rgb::Zero())
         store_.grow(static_cast<int>(j), patches().size(), elements().size());
