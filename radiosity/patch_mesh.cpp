@@ -1,10 +1,12 @@
 #include "radiosity/patch_mesh.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <unordered_map>
 
+#include "geometry/plane.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -148,6 +150,33 @@ std::vector<Vec3> ElementMesh::face_points(int face) const {
     out.emplace_back(p[0], p[1], p[2]);
   }
   return out;
+}
+
+std::optional<Rgb> ElementMesh::neighbour_plane_at(const Solution& solution, int face) const {
+  const Element& el = solution.elements[face_element_[face]];
+  std::vector<int> neighbours;
+  for (const auto h : mesh_.fh_range(mesh_.face_handle(face))) {
+    const auto opposite = h.opp().face();
+    if (!opposite.is_valid()) continue;
+    const int g = face_element_[opposite.idx()];
+    if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end())
+      neighbours.push_back(g);
+  }
+  if (neighbours.size() < 3) return std::nullopt;
+  const PlaneFrame frame(el.centroid, solution.patches[el.patch].normal);
+  Eigen::MatrixXd A(neighbours.size(), 3);
+  Eigen::MatrixXd B(neighbours.size(), 3);
+  for (size_t i = 0; i < neighbours.size(); ++i) {
+    const Element& n = solution.elements[neighbours[i]];
+    const Vec2 uv = frame.to_2d(n.centroid);
+    A.row(i) << 1.0, uv.x(), uv.y();
+    B.row(i) = n.radiosity.transpose();
+  }
+  const Eigen::Matrix3d normal = A.transpose() * A;
+  Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
+  if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-10)) return std::nullopt;
+  const Eigen::Matrix3d fit = ldlt.solve(A.transpose() * B);
+  return Rgb(fit.row(0).transpose());
 }
 
 std::vector<Rgb> ElementMesh::vertex_radiosity(const Solution& solution,

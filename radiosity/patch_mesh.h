@@ -9,6 +9,7 @@
 /// each edge between consecutive vertices, so values agree on both sides of every edge: no
 /// cracks in Gouraud display.
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <optional>
 #include <vector>
 
 #include "radiosity/solution.h"
@@ -37,6 +38,12 @@ class ElementMesh {
   std::vector<Vec3> face_points(int face) const;
   /// The face's vertex indices (OpenMesh vertex handles' indices).
   std::vector<int> face_vertices(int face) const;
+
+  /// The radiosity at face f's centroid predicted by the least-squares plane
+  /// B(u, v) = a + b u + c v through its mesh neighbours' radiosities at their centroids (in
+  /// the face's plane, around its centroid: the prediction is a). None with fewer than three
+  /// neighbours, or neighbours in a line.
+  std::optional<Rgb> neighbour_plane_at(const Solution& solution, int face) const;
 
   /// Gouraud vertex values: per vertex, the area-weighted mean radiosity of the faces around
   /// it (+ rho * ambient when `with_ambient`). Indexed by vertex.

@@ -45,6 +45,9 @@ struct SolverSettings {
   /// false casts them all (the baseline the culling is measured against). Not saved in the
   /// solution file.
   bool shaft_culling = true;
+
+  /// Throws rad::Error naming the first setting out of its range.
+  void validate() const;
 };
 
 /// A shooter: a planar sub-polygon of one scene polygon.

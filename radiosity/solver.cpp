@@ -4,42 +4,24 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <tuple>
 
 #include "geometry/lambert.h"
-#include "geometry/plane.h"
 #include "radiosity/form_factor_store.h"
 #include "radiosity/mesher.h"
 #include "radiosity/near_field.h"
 #include "radiosity/patch_mesh.h"
 #include "radiosity/random_stream.h"
 #include "radiosity/shooter.h"
-#include "scene/error.h"
 
 namespace rad {
-namespace {
-
-void validate(const SolverSettings& s) {
-  auto bad = [](const std::string& what) { throw Error("solver settings: " + what); };
-  if (!(s.patch_size > 0 && s.patch_size <= 1)) bad("patch_size must be in (0, 1]");
-  if (s.element_levels < 0 || s.element_levels > 6) bad("element_levels must be in [0, 6]");
-  if (!(s.refine_threshold >= 0)) bad("refine_threshold must be >= 0");
-  if (s.refine_passes < 0 || s.refine_passes > 20) bad("refine_passes must be in [0, 20]");
-  if (!(s.min_element_size > 0)) bad("min_element_size must be > 0");
-  if (!(s.unshot_fraction > 0 && s.unshot_fraction < 1)) bad("unshot_fraction must be in (0, 1)");
-  if (s.max_shots < 0) bad("max_shots must be >= 0");
-  if (s.visibility_samples < 1) bad("visibility_samples must be >= 1");
-}
-
-}  // namespace
-
 double reference_radiosity(const Scene& scene) {
   const double area = scene.total_area();
   Rgb rho_area = Rgb::Zero();
@@ -130,36 +112,13 @@ class ProgressiveSolver {
   int refine_by_neighbours() {
     if (!refinement_enabled()) return 0;
     const ElementMesh mesh(solution_, scene_.tolerance().pad);
-    const PatchMesh& m = mesh.mesh();
     std::vector<char> split(mesh.face_count(), 0);
     tbb::parallel_for(0, mesh.face_count(), [&](int f) {
       const Element& el = solution_.elements[mesh.element(f)];
       if (!splittable(mesh.element(f))) return;
-      std::vector<int> neighbours;
-      for (const auto h : m.fh_range(m.face_handle(f))) {
-        const auto opposite = h.opp().face();
-        if (!opposite.is_valid()) continue;
-        const int g = mesh.element(opposite.idx());
-        if (std::find(neighbours.begin(), neighbours.end(), g) == neighbours.end())
-          neighbours.push_back(g);
-      }
-      if (neighbours.size() < 3) return;
-      // Fit B(u, v) = a + b u + c v through the neighbours, in the element's plane around its
-      // centroid: the prediction at the centroid is a.
-      const PlaneFrame frame(el.centroid, solution_.patches[el.patch].normal);
-      Eigen::MatrixXd A(neighbours.size(), 3);
-      Eigen::MatrixXd B(neighbours.size(), 3);
-      for (size_t i = 0; i < neighbours.size(); ++i) {
-        const Element& n = solution_.elements[neighbours[i]];
-        const Vec2 uv = frame.to_2d(n.centroid);
-        A.row(i) << 1.0, uv.x(), uv.y();
-        B.row(i) = n.radiosity.transpose();
-      }
-      const Eigen::Matrix3d normal = A.transpose() * A;
-      Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
-      if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-10)) return;  // neighbours in a line
-      const Eigen::Matrix3d fit = ldlt.solve(A.transpose() * B);
-      const Rgb predicted = fit.row(0).transpose();
+      const std::optional<Rgb> fitted = mesh.neighbour_plane_at(solution_, f);
+      if (!fitted) return;
+      const Rgb& predicted = *fitted;
       const double miss = (el.radiosity - predicted).cwiseAbs().maxCoeff();
       split[f] = miss > limit(el.radiosity.cwiseMax(predicted).maxCoeff());
     });
@@ -606,17 +565,9 @@ class ProgressiveSolver {
 
 }  // namespace
 
-std::vector<int> Solution::leaves() const {
-  std::vector<int> out;
-  for (size_t e = 0; e < elements.size(); ++e) {
-    if (elements[e].is_leaf()) out.push_back(static_cast<int>(e));
-  }
-  return out;
-}
-
 Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress) {
-  validate(settings);
+  settings.validate();
   const auto start = std::chrono::steady_clock::now();
   ProgressiveSolver solver(caster, settings);
   solver.shoot_until_converged(progress);
