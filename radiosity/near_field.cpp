@@ -28,6 +28,13 @@ double NearField::average_up(const std::vector<Element>& elements, int patch,
   struct Range {
     Rgb least, largest;
   };
+  // What a live leaf's value can differ from the mean by: the mean counts buried leaves (zero,
+  // hidden from every receiver), so it can lie below the live values, and the spread runs
+  // over the live values and the mean.
+  const auto spread_about = [](const Range& live, const Rgb& mean) {
+    if (!(live.least[0] <= live.largest[0])) return 0.0f;  // nothing live: nothing seen
+    return static_cast<float>((live.largest.cwiseMax(mean) - live.least.cwiseMin(mean)).maxCoeff());
+  };
   const std::function<Range(int)> visit = [&](int node) -> Range {
     const Element& n = elements[node];
     if (n.is_leaf()) {
@@ -43,19 +50,20 @@ double NearField::average_up(const std::vector<Element>& elements, int patch,
       sum += value[n.first_child + c] * elements[n.first_child + c].area;
     }
     value[node] = sum / n.area;
-    spread[node] = range.least[0] <= range.largest[0]
-                       ? static_cast<float>((range.largest - range.least).maxCoeff())
-                       : 0.0f;
+    spread[node] = spread_about(range, value[node]);
     return range;
   };
   Range whole{Rgb::Constant(infinite), Rgb::Constant(-infinite)};
+  Rgb sum = Rgb::Zero();
+  double area = 0;
   for (const int root : roots_[patch]) {
     const Range r = visit(root);
     whole.least = whole.least.cwiseMin(r.least);
     whole.largest = whole.largest.cwiseMax(r.largest);
+    sum += value[root] * elements[root].area;
+    area += elements[root].area;
   }
-  if (!(whole.least[0] <= whole.largest[0])) return 0;
-  return (whole.largest - whole.least).maxCoeff();
+  return area > 0 ? spread_about(whole, sum / area) : 0.0;
 }
 
 Rgb NearField::gather(const std::vector<Element>& elements, int e, int patch,

@@ -32,8 +32,9 @@ class NearField {
   }
   /// ...or when taking the piece as uniform could be off by more than `tolerated` (irradiance)
   /// at x. Seen as one polygon of its mean radiosity, a piece whose live leaves' radiosities d_l
-  /// span [least, largest] sends mean FF instead of sum_l d_l FF_l; the difference is
-  /// sum_l (d_l - mean) FF_l, at most (largest - least) FF in size, and FF is at most
+  /// and mean span [least, largest] sends mean FF instead of sum_l d_l FF_l (buried leaves are
+  /// hidden: FF_l = 0); the difference is sum_l (d_l - mean) FF_l, at most
+  /// (largest - least) FF in size, and FF is at most
   /// A / (pi gap^2) (gap: from x to the piece's bounding sphere). A piece across a penumbra
   /// seen from a few radii is where this matters; a uniform one never needs it.
   static bool needs_pieces(const Vec3& x, const Sphere& piece, double area, double spread,
@@ -59,7 +60,8 @@ class NearField {
 
   /// Fills the inner nodes of a patch's trees with the area-weighted mean of `value` over their
   /// leaves, and `spread` (per node) with largest - least of `value` over its live leaves (not
-  /// `buried`), the largest over the channels. Returns the spread of the whole patch.
+  /// `buried`) and its mean, the largest over the channels. Returns the spread of the whole
+  /// patch.
   double average_up(const std::vector<Element>& elements, int patch, std::vector<Rgb>& value,
                     std::vector<float>& spread, const std::vector<char>& buried) const;
 

@@ -46,11 +46,12 @@ TEST(NearField, AverageUpGivesMeansOverAllLeavesAndSpreadsOverTheLiveOnes) {
   std::vector<float> spread;
   const double whole = field.average_up(s.elements, 0, value, spread, buried);
   // The mean counts every leaf by its area (a buried one is hidden from every receiver, and
-  // its value is zero in a solve); the spread only the live ones.
+  // its value is zero in a solve); the spread runs over the live leaves and the mean.
   EXPECT_NEAR(value[0][0], (1 + 2 + 3 + 100) / 4.0, 1e-12);
-  EXPECT_NEAR(spread[0], 2.0, 1e-6);  // red: 1 to 3
-  // The patch's live leaves: 0.5 to 3 in red, 0.5 to 4 in green, 0.5 to 6 in blue.
-  EXPECT_NEAR(whole, 5.5, 1e-12);
+  EXPECT_NEAR(spread[0], 26.5 - 1, 1e-5);  // red: live 1 to 3, mean 26.5
+  // The patch: live leaves 0.5 to 3, 4 and 6; means (26.5 + 2 + 3 + 0.5) / 4 = 8 in red,
+  // (25.75 + 4 + 3 + 0.5) / 4 = 8.3125 in green, (25.75 + 6 + 3 + 0.5) / 4 = 8.8125 in blue.
+  EXPECT_NEAR(whole, 8.8125 - 0.5, 1e-12);
 }
 
 TEST(NearField, APieceLeftWholeIsOffByNoMoreThanWhatNeedsPiecesTolerates) {
@@ -62,9 +63,10 @@ TEST(NearField, APieceLeftWholeIsOffByNoMoreThanWhatNeedsPiecesTolerates) {
   const NearField field(1, s.elements);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<char> buried(s.elements.size(), 0);
   int left_whole = 0, split = 0;
   for (int trial = 0; trial < 2000; ++trial) {
+    // A third of the trials with a buried leaf: zero, in the mean, hidden from x.
+    std::vector<char> buried(s.elements.size(), 0);
     // Half the trials the worst case: one bright leaf among dark ones, seen from above it,
     // where the error nears the bound.
     const bool worst = trial % 2 == 0;
@@ -77,6 +79,13 @@ TEST(NearField, APieceLeftWholeIsOffByNoMoreThanWhatNeedsPiecesTolerates) {
     }
     const int bright = leaves[static_cast<size_t>(u(rng) * leaves.size()) % leaves.size()];
     if (worst) value[bright] = Rgb::Constant(10);
+    if (trial % 3 == 1) {
+      // Every live leaf alike, one buried: uniform as seen, yet its mean is diluted.
+      const int hidden = leaves[static_cast<size_t>(u(rng) * leaves.size()) % leaves.size()];
+      for (const int l : leaves) value[l] = Rgb::Constant(5);
+      buried[hidden] = 1;
+      value[hidden] = Rgb::Zero();
+    }
     std::vector<float> spread;
     const double whole = field.average_up(s.elements, 0, value, spread, buried);
     double mean = 0, off = 0;
@@ -90,7 +99,7 @@ TEST(NearField, APieceLeftWholeIsOffByNoMoreThanWhatNeedsPiecesTolerates) {
       if (s.elements[e].is_leaf()) mean += s.elements[e].area * value[e][0];
     }
     for (size_t e = 0; e < s.elements.size(); ++e) {
-      if (s.elements[e].is_leaf())
+      if (s.elements[e].is_leaf() && !buried[e])
         off += (value[e][0] - mean) * point_polygon_form_factor(x, n, s.elements[e].corners);
     }
     const Sphere bounds{{0.5, 0.5, 0}, std::sqrt(0.5)};
