@@ -8,6 +8,7 @@
 ///
 /// The per-edge term is a free function of plain arrays so that a batched (SIMD) version can
 /// replace the loops without touching the callers.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <span>
@@ -51,5 +52,12 @@ inline double lambert_loop(std::span<const Vec3> loop, const Vec3& n) {
 /// contribute 0. Exact to rounding for any simple polygon, convex or not; x on the polygon's
 /// plane gives 0. Cost O(#V).
 double point_polygon_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& polygon);
+
+/// An upper bound on the form factor from a differential receiver to any surface of `area`
+/// no part of which is closer than `gap`: cos cos / (pi r^2) <= 1 / (pi gap^2) over it, and no
+/// form factor exceeds 1 (gap <= 0: the surface may touch the receiver).
+inline double form_factor_bound(double area, double gap) {
+  return gap > 0 ? std::min(1.0, area / (std::numbers::pi * gap * gap)) : 1.0;
+}
 
 }  // namespace rad

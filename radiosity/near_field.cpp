@@ -81,8 +81,7 @@ Rgb NearField::gather(const std::vector<Element>& elements, int e, int patch,
     if (density[node] == Rgb::Zero()) continue;
     const Element& piece = elements[node];
     const Sphere bounds{piece.centroid, radius_[node]};
-    if (!piece.is_leaf() &&
-        (is_near(x, bounds) || needs_pieces(x, bounds, piece.area, spread[node], tolerated))) {
+    if (!piece.is_leaf() && gathers_in_pieces(x, bounds, piece.area, spread[node], tolerated)) {
       for (int c = 3; c >= 0; --c) stack.push_back(piece.first_child + c);  // children in order
       continue;
     }

@@ -1,12 +1,11 @@
 #pragma once
 /// Shooting a patch piece by piece to the receivers near it.
 #include <Eigen/Core>
-#include <algorithm>
 #include <functional>
-#include <numbers>
 #include <utility>
 #include <vector>
 
+#include "geometry/lambert.h"
 #include "radiosity/shooter.h"
 #include "radiosity/solution.h"
 
@@ -40,9 +39,13 @@ class NearField {
   static bool needs_pieces(const Vec3& x, const Sphere& piece, double area, double spread,
                            double tolerated) {
     if (!(spread > 0)) return false;
-    const double gap = (x - piece.centre).norm() - piece.radius;
-    const double ff = gap > 0 ? std::min(1.0, area / (std::numbers::pi * gap * gap)) : 1.0;
-    return spread * ff > tolerated;
+    return spread * form_factor_bound(area, (x - piece.centre).norm() - piece.radius) > tolerated;
+  }
+  /// The receiver at x gathers the piece (a patch, or a node of its tree) in pieces: near it,
+  /// or where taking it as uniform could cost more than `tolerated`.
+  static bool gathers_in_pieces(const Vec3& x, const Sphere& piece, double area, double spread,
+                                double tolerated) {
+    return is_near(x, piece) || needs_pieces(x, piece, area, spread, tolerated);
   }
   /// The share of the refinement limit (the error a receiver's radiosity may have before it
   /// splits) that the solver lets a piece taken as uniform cost a receiver. Measured on the

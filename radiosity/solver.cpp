@@ -285,10 +285,8 @@ class ProgressiveSolver {
   /// Whether receiver e gathers `patch` piece by piece: near it, or where its spread could
   /// make it off by more than the receiver tolerates (near_tolerance).
   bool is_near(int e, int patch, double spread) const {
-    const Element& el = solution_.elements[e];
-    return NearField::is_near(el.centroid, patch_bounds_[patch]) ||
-           NearField::needs_pieces(el.centroid, patch_bounds_[patch], solution_.patches[patch].area,
-                                   spread, near_tolerance(e));
+    return NearField::gathers_in_pieces(solution_.elements[e].centroid, patch_bounds_[patch],
+                                        solution_.patches[patch].area, spread, near_tolerance(e));
   }
   /// The irradiance error receiver e tolerates from a piece taken as uniform: a share of the
   /// refinement limit at its radiosity (NearField::limit_share), through its reflectance.
@@ -433,8 +431,7 @@ class ProgressiveSolver {
         // skip pairs that cannot reach the limit.
         const Sphere eb{el.centroid, near_field_.radius(e)};
         const double gap = (eb.centre - sb.centre).norm() - eb.radius - sb.radius;
-        const double ff_max =
-            gap > 0 ? std::min(1.0, source.area / (std::numbers::pi * gap * gap)) : 1.0;
+        const double ff_max = form_factor_bound(source.area, gap);
         if (scale * ff_max <= lim) return;
         // Corners pulled 0.1% towards the centre so no point lies on a neighbouring polygon.
         // Near a contact, down to a sixteenth of the patch size (the patch size stays the one
