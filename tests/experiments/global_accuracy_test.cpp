@@ -77,17 +77,16 @@ AccuracyReport default_accuracy(const std::string& name) {
   return report;
 }
 
-TEST(GlobalAccuracy, TheDefaultSolveOfTheCornellBoxIsWithinOnePercentRms) {
+TEST(GlobalAccuracy, TheDefaultSolveOfTheCornellBoxIsWithinTheTargets) {
   const AccuracyReport r = default_accuracy("cornell-box");
   EXPECT_LE(r.rms, 0.01);
+  EXPECT_LE(r.largest, 0.02);
   EXPECT_LE(std::abs(r.mean), 0.003);
-  // The largest is at point 10, 2 mm from the short block's front in its umbra, where the
-  // piecewise-constant radiosity of the block's lowest elements (4.7 mm, the smallest the
-  // solver makes) is seen at half the hemisphere: measured 3.1%, the target is 2%.
-  EXPECT_LE(r.largest, 0.035);
   for (size_t i = 0; i < r.point_errors.size(); ++i) {
-    if (i == 10 || i == 17) continue;  // the two points within 5 mm of a concave edge
-    EXPECT_LE(r.point_errors[i].cwiseAbs().maxCoeff(), 0.012) << "point " << i;
+    // The two points within 5 mm of a concave edge are the largest (measured 1.4% and 1.5%);
+    // the rest are within 0.7%.
+    if (i == 10 || i == 17) continue;
+    EXPECT_LE(r.point_errors[i].cwiseAbs().maxCoeff(), 0.01) << "point " << i;
   }
 }
 
