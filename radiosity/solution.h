@@ -20,11 +20,11 @@ struct SolverSettings {
   int element_levels = 1;
   /// Adaptive refinement limit, relative to the local radiosity B clamped to [0.1, 1] x B_ref
   /// (near a contact or a concave edge [0.02, 1] x B_ref; B_ref: the scene's mean radiosity
-  /// estimate, emitted power / total area / (1 - mean reflectance)). During a shot, an element is split in four when linear
-  /// interpolation from its corners misses the radiosity it receives at its centre by more than
-  /// refine_threshold * clamp(B) (near a contact or a concave edge, down to patch_size / 16:
-  /// when any corner differs from the centre by more); after convergence, when it misses the
-  /// plane through its neighbours by more. 0 disables refinement.
+  /// estimate, emitted power / total area / (1 - mean reflectance)). During a shot, an element is
+  /// split in four when linear interpolation from its corners misses the radiosity it receives at
+  /// its centre by more than refine_threshold * clamp(B) (near a contact or a concave edge, down to
+  /// patch_size / 16: when any corner differs from the centre by more); after convergence, when it
+  /// misses the plane through its neighbours by more. 0 disables refinement.
   double refine_threshold = 0.05;
   /// After convergence, up to this many passes split elements whose radiosity differs from a
   /// mesh neighbour's by more than the same limit (children re-gather exactly), then shoot on.

@@ -120,8 +120,8 @@ class ProgressiveSolver {
       if (!fitted) return;
       const Rgb& predicted = *fitted;
       const double miss = (el.radiosity - predicted).cwiseAbs().maxCoeff();
-      split[f] = miss > limit(el.radiosity.cwiseMax(predicted).maxCoeff(),
-                             near_contact_[mesh.element(f)]);
+      split[f] =
+          miss > limit(el.radiosity.cwiseMax(predicted).maxCoeff(), near_contact_[mesh.element(f)]);
     });
     std::vector<int> children;
     for (int f = 0; f < mesh.face_count(); ++f) {
@@ -310,7 +310,8 @@ class ProgressiveSolver {
     const Element& el = solution_.elements[e];
     const double rho = material(el.polygon).reflectance.maxCoeff();
     if (!(rho > 0)) return std::numeric_limits<double>::infinity();
-    return NearField::limit_share * limit(el.radiosity.cwiseAbs().maxCoeff(), near_contact_[e]) / rho;
+    return NearField::limit_share * limit(el.radiosity.cwiseAbs().maxCoeff(), near_contact_[e]) /
+           rho;
   }
 
   /// One shot of patch `shooter`'s unshot radiosity to every leaf.
