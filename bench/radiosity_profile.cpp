@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "formats/solution_io.h"
-#include "geometry/plane.h"
 #include "localpass/path_tracer.h"
 #include "radiosity/solution.h"
+#include "scene/polygon.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
 
@@ -33,13 +33,10 @@ using rad::Vec3;
 
 constexpr std::array<double, 6> kBinEnds = {1, 2, 5, 20, 80, 1e300};  // distance bins, scene units
 
-/// True when y (in the element's plane, normal n) lies in its convex outline.
+/// True when y (in the element's plane, normal n) lies in its outline or on its boundary.
 bool inside(const rad::Element& el, const Vec3& y, const Vec3& n) {
-  const auto& c = el.corners;
-  for (size_t i = 0; i < c.size(); ++i) {
-    if ((c[(i + 1) % c.size()] - c[i]).cross(y - c[i]).dot(n) < -1e-9) return false;
-  }
-  return true;
+  const rad::PlaneFrame frame(el.corners.front(), n);  // project_to_plane's frame
+  return rad::contains_2d(rad::project_to_plane(el.corners, n), frame.to_2d(y));
 }
 
 struct Bin {
@@ -73,10 +70,9 @@ int main(int argc, char** argv) {
     std::uniform_real_distribution<double> uniform(0, 1);
     std::map<std::pair<int, int>, Bin> local;
     for (int i = 0; i < 1000; ++i) {
-      const double r = std::sqrt(uniform(rng)), phi = 2 * std::numbers::pi * uniform(rng);
-      const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v +
-                     std::sqrt(std::max(0.0, 1 - r * r)) * n;
-      const auto hit = caster.closest_hit({x + offset * n, d.normalized()}, 0);
+      const double r2 = uniform(rng), phi = 2 * std::numbers::pi * uniform(rng);
+      const Vec3 d = frame.cosine_direction(r2, phi);
+      const auto hit = caster.closest_hit({x + offset * n, d}, 0);
       if (!hit || !hit->front_facing) continue;  // nothing, or a back: black for both
       const rad::Material& m = scene.materials[scene.polygons[hit->polygon].material];
       const rad::Element* element = nullptr;

@@ -37,9 +37,7 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
       // Malley's method: uniform on the disk (concentric strata in r^2 and phi), lifted.
       const double r2 = (i + jitter(rng)) / strata,
                    phi = 2 * std::numbers::pi * (j + jitter(rng)) / strata;
-      const double r = std::sqrt(r2);
-      const Vec3 d = r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v +
-                     std::sqrt(std::max(0.0, 1 - r2)) * n;
+      const Vec3 d = frame.cosine_direction(r2, phi);
       // Half an offset back along the ray too, so that no ray starts inside a plane (at a point
       // on an edge the lift along n stays in the neighbour's); what lies that near the point
       // is passed (RayCaster::follow), as the exact gatherers see polygons through x edge-on.

@@ -14,11 +14,8 @@ namespace {
 /// A cosine-weighted direction about n (Malley's method).
 Vec3 cosine_direction(const Vec3& n, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0, 1);
-  const PlaneFrame frame(Vec3::Zero(), n);
   const double r2 = u(rng), phi = 2 * std::numbers::pi * u(rng);
-  const double r = std::sqrt(r2);
-  return r * std::cos(phi) * frame.u + r * std::sin(phi) * frame.v +
-         std::sqrt(std::max(0.0, 1 - r2)) * n;
+  return PlaneFrame(Vec3::Zero(), n).cosine_direction(r2, phi);
 }
 
 }  // namespace

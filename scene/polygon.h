@@ -4,7 +4,9 @@
 /// Convention (DESIGN.md §3): vertices are listed counter-clockwise seen from the front; the
 /// front normal follows the right-hand rule. Surfaces are one-sided (only the front emits and
 /// reflects) and opaque from both sides.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -41,6 +43,12 @@ struct PlaneFrame {
   Vec3 u, v, n;
   explicit PlaneFrame(const Vec3& origin, const Vec3& unit_normal);
   Vec2 to_2d(const Vec3& p) const { return {u.dot(p - origin), v.dot(p - origin)}; }
+  /// The direction about n lifted from the point (sqrt(r2), phi) of the unit disk (Malley's
+  /// method): with r2 and phi / (2 pi) uniform in [0, 1), directions are cosine-weighted.
+  Vec3 cosine_direction(double r2, double phi) const {
+    const double r = std::sqrt(r2);
+    return r * std::cos(phi) * u + r * std::sin(phi) * v + std::sqrt(std::max(0.0, 1 - r2)) * n;
+  }
 };
 
 /// Projects the polygon onto its plane (normal `n`): #V 2D points, same order.
