@@ -78,16 +78,17 @@ int main(int argc, char** argv) {
                 name.c_str(), reference.size(), 100 * worst_se);
     std::printf(
         "| patch size | patches | elements | shots | solve seconds | RMS error | largest error "
-        "(point) | mean error (bias) | reference's SE of the mean |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|\n");
+        "(point) | mean error (bias) | reference's SE of the mean | points' SE of the mean |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
     rad::ChartSeries rms{name + ", RMS", {}, {}}, largest{name + ", largest", {}, {}};
     for (const Run& r : runs) {
-      std::printf("| %.2f%s | %d | %d | %d | %.1f%s | %.2f%% | %.2f%% (%d) | %+.3f%% | %.3f%% |\n",
-                  r.patch_size, r.patch_size == default_size ? " (default)" : "", r.stats.patches,
-                  r.stats.elements, r.stats.shots, r.seconds,
-                  r.patch_size == default_size ? " (median of 3)" : "", 100 * r.report.rms,
-                  100 * r.report.largest, r.report.worst, 100 * r.report.mean,
-                  100 * r.report.mean_standard_error);
+      std::printf(
+          "| %.2f%s | %d | %d | %d | %.1f%s | %.2f%% | %.2f%% (%d) | %+.3f%% | %.3f%% | %.3f%% |\n",
+          r.patch_size, r.patch_size == default_size ? " (default)" : "", r.stats.patches,
+          r.stats.elements, r.stats.shots, r.seconds,
+          r.patch_size == default_size ? " (median of 3)" : "", 100 * r.report.rms,
+          100 * r.report.largest, r.report.worst, 100 * r.report.mean,
+          100 * r.report.mean_standard_error, 100 * r.report.points_standard_error);
       rms.x.push_back(r.seconds);
       rms.y.push_back(100 * r.report.rms);
       largest.x.push_back(r.seconds);

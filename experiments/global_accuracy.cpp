@@ -113,6 +113,25 @@ AccuracyReport compare_to_reference(const std::vector<ReferencePoint>& reference
     r.mean = sum / count;
     r.mean_standard_error = std::sqrt(se_squares) / count;
   }
+  // Each point's mean error over its channels, then their spread over the points.
+  std::vector<double> per_point;
+  for (size_t i = 0; i < reference.size(); ++i) {
+    double point_sum = 0;
+    int channels = 0;
+    for (int c = 0; c < 3; ++c) {
+      if (!(reference[i].value[c] > 0)) continue;
+      point_sum += r.point_errors[i][c];
+      ++channels;
+    }
+    if (channels > 0) per_point.push_back(point_sum / channels);
+  }
+  const size_t n = per_point.size();
+  if (n > 1) {
+    double mean = 0, squares_about = 0;
+    for (const double e : per_point) mean += e / static_cast<double>(n);
+    for (const double e : per_point) squares_about += (e - mean) * (e - mean);
+    r.points_standard_error = std::sqrt(squares_about / static_cast<double>(n - 1) / n);
+  }
   return r;
 }
 

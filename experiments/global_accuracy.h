@@ -33,6 +33,11 @@ struct AccuracyReport {
   /// Standard error of `mean` from the reference's own (sqrt(sum se_rel^2) / count): a bias
   /// beyond a few of these is the solution's, not the reference's.
   double mean_standard_error = 0;
+  /// Standard error of `mean` from the points' own scatter: with each point's error taken as
+  /// the mean over its channels (channels at one point err together), the standard deviation
+  /// of those over the n points / sqrt(n). A mean within a couple of these could come from
+  /// which points were chosen; beyond, the solution is biased everywhere.
+  double points_standard_error = 0;
   int worst = -1;                 ///< The point of the largest |e|
   std::vector<Rgb> point_errors;  ///< e per point and channel
 };

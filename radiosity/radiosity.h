@@ -2,7 +2,8 @@
 /// Module `radiosity` (rad_radiosity): the coarse global solution (DESIGN.md §1 step 1).
 /// Owns: cutting polygons along their contact lines (contact_cuts.h) and meshing them into
 /// patches and elements (mesher.h), progressive refinement radiosity in RGB with adaptive
-/// element refinement (Cohen, Chen, Wallace, Greenberg 1988; solver.h): what a shot delivers to
+/// element refinement (Cohen, Chen, Wallace, Greenberg 1988; solver.h, its state and steps in
+/// progressive_solver.h, split over solver.cpp and refinement.cpp): what a shot delivers to
 /// a point (shooter.h), the near field shot piece by piece (near_field.h), the form factors kept
 /// across shots (form_factor_store.h), the shadow culling (shadow_culling.h), the jitter
 /// streams (random_stream.h); the solution's data model (solution.h), its elements as gatherer

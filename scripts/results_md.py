@@ -121,6 +121,21 @@ def main():
             w("")
         w("![error against solve time](images/global-accuracy.png)")
         w("")
+    if os.path.exists("bench/results/solve_versus.md"):
+        lines = open("bench/results/solve_versus.md").read().split("\n")
+        w("### The default solve against the solve before this work")
+        w("")
+        w("From [`bench/results/solve_versus.md`](../bench/results/solve_versus.md)")
+        w("(`bash bench/solve_versus.sh`): the Cornell box's default solve, this commit's binary and")
+        w("the earlier commit's back to back in pairs; ratios new / base, medians over the pairs.")
+        w("")
+        for line in lines:
+            if line.startswith("- machine") or line.startswith("- commit"):
+                w(line)
+        w("")
+        table = [line for line in lines if line.startswith("|")]
+        out.extend(table[:2] + [line for line in table if "median" in line])
+        w("")
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")

@@ -59,6 +59,8 @@ TEST(GlobalAccuracy, TheMeasureOnHandMadeValues) {
   EXPECT_NEAR(r.rms, std::sqrt((0.01 + 0.0625 + 0.0025) / 5), 1e-12);
   EXPECT_NEAR(r.mean_standard_error, std::sqrt(3 * 1e-4) / 5, 1e-12);
   EXPECT_NEAR(r.point_errors[1][2], 0.05, 1e-12);
+  // Point means -0.05 and +0.025: about their mean -0.0125, sd = 0.075 / sqrt(2), over sqrt(2).
+  EXPECT_NEAR(r.points_standard_error, 0.0375, 1e-12);
 }
 
 /// The default solve of data/<name>, gathered exactly at its accuracy points.
