@@ -114,12 +114,13 @@ class NearField {
 
  private:
   std::vector<std::vector<int>> roots_;  ///< Per patch, its top-level elements
-  /// The form factors from a receiver to the pieces of one patch it gathered in pieces.
-  struct PatchPieces {
-    int patch;
-    std::vector<std::pair<int, Eigen::Vector3f>> pieces;  ///< (node, form factor), by node
+  /// The form factors from a receiver to the pieces of the patches it gathered in pieces.
+  struct StoredPieces {
+    std::vector<int> patches;  ///< Sorted
+    /// Per patch in `patches`: (node, form factor), sorted by node.
+    std::vector<std::vector<std::pair<int, Eigen::Vector3f>>> pieces;
   };
-  std::vector<std::vector<PatchPieces>> stored_;        ///< Per receiver, by patch
+  std::vector<StoredPieces> stored_;                    ///< Per receiver
   std::vector<std::vector<std::pair<int, Rgb>>> used_;  ///< Per receiver
   std::vector<Rgb> sent_;                               ///< far_density's scratch, per node
   std::vector<double> radius_;  ///< Per element, its bounding radius about its centroid

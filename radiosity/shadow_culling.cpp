@@ -17,9 +17,18 @@ ShadowCulling::ShadowCulling(const Scene& scene, double pad) : scene_(scene), pa
 
 bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector<Vec3>& corners,
                                   int shooter) const {
-  std::optional<Shaft> shaft;  // built only if some plane separates
+  // The shaft's box (Shaft's hull box): a polygon whose box misses it misses the shaft, and
+  // the test is cheaper than the plane test and far cheaper than building the shaft.
+  Eigen::AlignedBox3d corner_box;
+  for (const Vec3& c : corners) corner_box.extend(c);
+  Eigen::AlignedBox3d hull = corner_box;
+  hull.min().array() -= pad_;
+  hull.max().array() += pad_;
+  hull.extend(x);
+  std::optional<Shaft> shaft;  // built only for a polygon in its box that no plane separates
   for (size_t p = 0; p < scene_.polygons.size(); ++p) {
     if (static_cast<int>(p) == receiver || static_cast<int>(p) == shooter) continue;
+    if (!hull.intersects(boxes_[p])) continue;
     const Polygon& polygon = scene_.polygons[p];
     const Vec3& origin = polygon.vertices.front();
     // x and every corner strictly on one side: no segment between them meets the plane.
@@ -30,11 +39,7 @@ bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector
       one_side = std::abs(s) > pad_ && (s > 0) == (side > 0);
     }
     if (one_side) continue;
-    if (!shaft) {
-      Eigen::AlignedBox3d box;
-      for (const Vec3& c : corners) box.extend(c);
-      shaft.emplace(x, box, pad_);
-    }
+    if (!shaft) shaft.emplace(x, corner_box, pad_);
     if (shaft->may_meet(polygon.vertices, boxes_[p])) return true;
   }
   return false;

@@ -22,7 +22,8 @@ class ShadowCulling {
   /// to the corners' box (geometry/shaft.h, padded). Then no segment is blocked: each lies in
   /// the shaft, and a segment meets a plane that does not separate its ends only where it
   /// lies in it. The receiver's own plane holds x (a segment leaves it there), the shooter's
-  /// holds the far end. Cost: one plane test per polygon, a shaft test for the rest.
+  /// holds the far end. Cost: a box test per polygon (against the shaft's box), a plane test
+  /// for those inside it, the shaft (built once) for the rest.
   bool may_be_hidden(const Vec3& x, int receiver, const std::vector<Vec3>& corners,
                      int shooter) const;
 
