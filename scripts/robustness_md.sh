@@ -45,7 +45,7 @@ keys), OBJ, PLY, OFF and STL meshes, the points CSV, the solution file and the O
 `compare` reads. A crash, hang, leak or sanitizer report keeps the input under
 `build-fuzz/fuzz-findings/`; once fixed it goes into the regression set, which every fuzz run
 replays first and the normal suite replays too (`tests/formats/fuzz_regressions_test.cpp`). CI
-runs every target for 45 seconds: a failing regression input fails CI, a new finding is
+runs every target for 30 seconds: a failing regression input fails CI, a new finding is
 reported (`FUZZ_STRICT=1` makes it fail too).
 
 The fuzzers found an abort (OBJ), a hang (PLY header) and a 2 GB reservation (binary OFF) in
@@ -71,8 +71,8 @@ cat <<'TAIL'
 
 `make sanitize` builds the whole project and its tests with `-fsanitize=address,undefined`
 (`build-sanitize`) and runs the suite, less the few tests that only repeat default solves of
-whole scenes to check their numbers (`SANITIZE_EXCLUDE` in the Makefile; every code path they
-run is run by tests that stay in); CI runs it after the normal suite. Leaks are checked by
+whole scenes, or agreement checks over a whole solved scene, to check their numbers
+(`SANITIZE_EXCLUDE` in the Makefile; every code path they run is run by tests that stay in); CI runs it after the normal suite. Leaks are checked by
 the fuzz runs (every reader); the suite runs without leak detection, because Mesa's OpenGL
 driver, loaded by VTK's offscreen rendering, leaks from a module it unloads.
 
