@@ -125,7 +125,7 @@ class NearField {
   std::vector<Rgb> sent_;                               ///< far_density's scratch, per node
   std::vector<double> radius_;  ///< Per element, its bounding radius about its centroid
   /// Per element, its area: far_density sums over every leaf at every shot, and this array
-  /// is what that loop reads (an Element is two cache lines; this is a twentieth of one).
+  /// is what that loop reads (an Element is two cache lines; an area is an eighth of one).
   std::vector<double> area_;
 };
 
