@@ -14,8 +14,16 @@
 
 namespace rad::cli {
 
+namespace {
+bool strict_scenes = false;
+}  // namespace
+
+void set_strict(bool strict) { strict_scenes = strict; }
+
 Scene load_scene_reporting(const std::string& path) {
   Scene scene = load_scene(path);
+  if (strict_scenes && !scene.warnings.empty())
+    throw InputError(scene.warnings.front() + " (--strict: warnings are errors)");
   for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
   return scene;
 }

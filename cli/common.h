@@ -28,7 +28,11 @@ void add_image_size_options(CLI::App* sub, int* width, int* height,
 /// -j,--threads (0: all cores).
 void add_threads_option(CLI::App* sub, int* threads);
 
-/// Loads and validates a scene, printing its warnings to stderr.
+/// --strict: scene warnings become errors.
+void set_strict(bool strict);
+
+/// Loads and validates a scene, printing its warnings to stderr; with --strict the first
+/// warning is thrown as an InputError instead.
 Scene load_scene_reporting(const std::string& path);
 
 /// Reads a solution file and checks that it was solved for `scene` (loaded from

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "scene/scene_loader.h"
 
 namespace rad::cli {
@@ -25,8 +26,7 @@ std::string triple(const Vec3& v) {
 nlohmann::json to_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 void run_info(const InfoOptions& options) {
-  const Scene scene = load_scene(options.scene);
-  for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
+  const Scene scene = load_scene_reporting(options.scene);
 
   std::vector<int> polygons_per_material(scene.materials.size(), 0);
   std::vector<double> area_per_material(scene.materials.size(), 0.0);
@@ -56,6 +56,13 @@ void run_info(const InfoOptions& options) {
                                   {"specular", to_json(mat.specular)},
                                   {"polygons", polygons_per_material[m]},
                                   {"area", area_per_material[m]}});
+      if (mat.refracts()) {
+        const Refraction& r = *mat.refraction;
+        out["materials"].back()["refraction"] = {{"ior", to_json(r.ior)},
+                                                 {"transmittance", to_json(r.transmittance)},
+                                                 {"fresnel", r.fresnel},
+                                                 {"attenuation", to_json(r.attenuation)}};
+      }
     }
     if (scene.camera) {
       const CameraSpec& c = *scene.camera;
@@ -94,6 +101,14 @@ void run_info(const InfoOptions& options) {
     // The paper-000 keys only where they are set, so opaque scenes read as before.
     if (mat.is_filter()) std::cout << "transmittance " << triple(mat.transmittance) << "  ";
     if (mat.is_mirror()) std::cout << "specular " << triple(mat.specular) << "  ";
+    if (mat.refracts()) {
+      const Refraction& r = *mat.refraction;
+      std::cout << "ior " << triple(r.ior) << "  "
+                << (r.fresnel ? std::string("fresnel") : "transmittance " + triple(r.transmittance))
+                << "  ";
+      if ((r.attenuation.array() > 0).any())
+        std::cout << "attenuation " << triple(r.attenuation) << "  ";
+    }
     std::cout << polygons_per_material[m]
               << (polygons_per_material[m] == 1 ? " polygon" : " polygons") << ", area "
               << area_per_material[m] << "\n";

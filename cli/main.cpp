@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "scene/error.h"
 
 namespace {
@@ -42,6 +43,11 @@ int main(int argc, char** argv) {
       "radiosity"};  // named, so that --help reads the same however it was invoked
   app.require_subcommand(1);
   app.set_version_flag("--version", "radiosity 0.1.0");
+  bool strict = false;
+  app.add_flag("--strict", strict,
+               "Treat the scene's warnings (an open refracting mesh, merged vertices, ...) as "
+               "errors (exit 1)");
+  app.fallthrough();  // --strict may follow the subcommand too
 
   rad::cli::Run run;
   rad::cli::add_info_command(app, run);
@@ -65,6 +71,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  rad::cli::set_strict(strict);
   try {
     run();
   } catch (const rad::Error& e) {

@@ -82,6 +82,12 @@ void run_probe(const ProbeOptions& o) {
   std::vector<Rgb> irradiance(points.size());
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
   std::vector<Rgb> standard_error;                // the path tracer's
+  // 000 §4: light refracted through transparent polyhedra, the heuristic part, kept apart.
+  bool refracts = false;
+  for (const Polygon& p : scene.polygons)
+    refracts = refracts || scene.materials[p.material].refracts();
+  refracts = refracts && scene.refraction_depth > 0;
+  std::vector<Rgb> refracted(refracts ? points.size() : 0, Rgb::Zero());
   std::function<void(size_t)> gather;
   // The path tracer of the scene itself: no solution, every bounce sampled.
   std::optional<PathTracer> path_tracer;
@@ -121,18 +127,22 @@ void run_probe(const ProbeOptions& o) {
         const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
         irradiance[i] = r.irradiance;
         bound[i] = r.bound.maxCoeff();
+        if (refracts) refracted[i] = r.refracted;
       };
     }
   } else {
     // Both exact methods see the same faces (the polygons, concave ones as triangles). With
-    // mirrors, the local pass at tolerance 0 (it unfolds them: localpass/mirror_images.h).
+    // mirrors or refraction, the local pass at tolerance 0 (it unfolds them: localpass/
+    // mirror_images.h, refraction_images.h).
     bool mirrors = false;
     for (const Polygon& p : scene.polygons)
       mirrors = mirrors || scene.materials[p.material].is_mirror();
-    if (mirrors && scene.mirror_depth > 0) {
+    if ((mirrors && scene.mirror_depth > 0) || refracts) {
       pass.emplace(scene, faces_from_polygons(scene), method);
       gather = [&](size_t i) {
-        irradiance[i] = pass->gather(points[i].x, points[i].n, 0).irradiance;
+        const LocalPassResult r = pass->gather(points[i].x, points[i].n, 0);
+        irradiance[i] = r.irradiance;
+        if (refracts) refracted[i] = r.refracted;
       };
     } else {
       direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
@@ -156,11 +166,13 @@ void run_probe(const ProbeOptions& o) {
   bar.finish();
 
   const std::vector<Rgb>* errors = path_tracer ? &standard_error : nullptr;
+  // The path tracer follows refraction exactly: its E is the whole. Monte Carlo's rays too.
+  const std::vector<Rgb>* apart = refracts && pass ? &refracted : nullptr;
   if (o.output.empty()) {
-    write_probe_csv(std::cout, points, irradiance, bound, errors);
+    write_probe_csv(std::cout, points, irradiance, bound, errors, apart);
   } else {
     write_text_file(o.output, [&](std::ostream& file) {
-      write_probe_csv(file, points, irradiance, bound, errors);
+      write_probe_csv(file, points, irradiance, bound, errors, apart);
     });
   }
   const double seconds =
@@ -194,7 +206,13 @@ void add_probe_command(CLI::App& app, Run& run) {
       "shortest\n"
       "form that reads back exactly. A point on a polygon, an edge or a vertex is valid. Parallel "
       "over\n"
-      "points; the output is byte-identical for any thread count.");
+      "points; the output is byte-identical for any thread count. With refracting materials "
+      "(\"ior\"),\n"
+      "three more columns refracted_r,refracted_g,refracted_b: the light refracted through them by "
+      "the\n"
+      "apparent-depth heuristic of paper 000 section 4, NOT in E and NOT covered by the bound (the "
+      "total\n"
+      "is E + refracted). The path tracer and Monte Carlo follow refraction exactly, in E.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   sub->add_option("-p,--points", o->points,
                   "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")

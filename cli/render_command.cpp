@@ -84,6 +84,20 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& i
   out["bound"] = {{"relative_mean", summary.relative_bound_mean},
                   {"relative_max", summary.relative_bound_max},
                   {"max", summary.bound_max}};
+  // 000 §4: the heuristic part, apart from the bound (which covers the rest).
+  size_t refracted_pixels = 0;
+  double refracted_sum = 0, total_sum = 0;
+  for (size_t i = 0; i < image.refracted.pixels.size(); ++i) {
+    const double r = image.refracted.pixels[i].sum();
+    refracted_pixels += r > 0;
+    refracted_sum += r;
+    total_sum += image.radiosity.pixels[i].sum();
+  }
+  if (refracted_pixels > 0) {
+    out["refracted"] = {{"pixels", refracted_pixels},
+                        {"share_of_light", total_sum > 0 ? refracted_sum / total_sum : 0.0},
+                        {"certified", false}};
+  }
   return out;
 }
 
@@ -110,10 +124,18 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   auto& relative = out.channels["relative_bound"];
   bound.resize(n);
   relative.resize(n);
+  bool refracts = false;
+  for (const Rgb& r : image.refracted.pixels) refracts = refracts || r != Rgb::Zero();
+  std::vector<float>* refracted = refracts ? &out.channels["refracted"] : nullptr;
+  if (refracted) refracted->resize(n);
   for (size_t i = 0; i < n; ++i) {
-    const double b = image.bound.pixels[i].maxCoeff(), value = image.radiosity.pixels[i].maxCoeff();
+    // The bound covers the certified part alone: B less what refraction added (000 §4).
+    const Rgb& r = image.refracted.pixels[i];
+    const double b = image.bound.pixels[i].maxCoeff();
+    const double value = (image.radiosity.pixels[i] - r).maxCoeff();
     bound[i] = static_cast<float>(b);
     relative[i] = value > 0 ? static_cast<float>(b / value) : 0.0f;
+    if (refracted) (*refracted)[i] = static_cast<float>(r.maxCoeff());
   }
   return out;
 }
@@ -236,8 +258,11 @@ void add_render_command(CLI::App& app, Run& run) {
       "statistics,\n"
       "time) and IMAGE.pixels.exr (per-pixel channels projected, emitting, surface, and for the "
       "exact\n"
-      "methods bound and relative_bound; export --stats turns it into a VTK image), and show a "
-      "progress\n"
+      "methods bound and relative_bound, and refracted where light comes through refracting "
+      "materials:\n"
+      "the part of B from the heuristic of paper 000 section 4, which the bound does not cover; "
+      "export\n"
+      "--stats turns it into a VTK image), and show a progress\n"
       "bar on a terminal. All methods but albedo and facing need --solution, and refuse one solved "
       "for\n"
       "a different scene. Parallel over 16x16 pixel tiles; the image does not depend on the "

@@ -78,8 +78,9 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
 
 void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
                      const std::vector<Rgb>& irradiance, const std::vector<double>& bound,
-                     const std::vector<Rgb>* standard_error) {
-  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound" << (standard_error ? ",se_r,se_g,se_b" : "") << "\n";
+                     const std::vector<Rgb>* standard_error, const std::vector<Rgb>* refracted) {
+  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound" << (standard_error ? ",se_r,se_g,se_b" : "")
+      << (refracted ? ",refracted_r,refracted_g,refracted_b" : "") << "\n";
   std::string row;
   for (size_t i = 0; i < points.size(); ++i) {
     const ProbePoint& p = points[i];
@@ -90,6 +91,10 @@ void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
     if (standard_error) {
       const Rgb& se = (*standard_error)[i];
       values.insert(values.end(), {se.x(), se.y(), se.z()});
+    }
+    if (refracted) {
+      const Rgb& r = (*refracted)[i];
+      values.insert(values.end(), {r.x(), r.y(), r.z()});
     }
     for (const double v : values) {
       // The shortest text that reads back to the same double; nothing for what is not finite

@@ -10,6 +10,7 @@
 #include "hemisphere/blocker_surface.h"
 #include "localpass/cluster_bounds.h"
 #include "localpass/mirror_images.h"
+#include "localpass/refraction_images.h"
 #include "scene/polygon_faces.h"
 
 namespace rad {
@@ -44,6 +45,13 @@ struct LocalPass::Mirror {
   std::unique_ptr<LocalPass> pass;  ///< Over `unfolded`, which has no mirrors of its own
 };
 
+struct LocalPass::Refracting {
+  Scene scene;  ///< A copy: the provenance and materials of each image
+  std::vector<RefractingFacet> facets;
+  std::vector<RefractionChain> chains;
+  Method method;
+};
+
 LocalPass::~LocalPass() = default;
 
 LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method method,
@@ -67,7 +75,8 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   mirror_culling_ = settings.mirror_culling;
   const std::vector<MirrorPiece> pieces = mirror_pieces(scene);
   LocalPassSettings unfolded = settings;
-  unfolded.mirror_depth = 0;  // an unfolded scene has no mirrors (images never reflect)
+  unfolded.mirror_depth = 0;      // an unfolded scene has no mirrors (images never reflect)
+  unfolded.refraction_depth = 0;  // refraction is gathered at the real receiver only
   const int depth = settings.mirror_depth.value_or(scene.mirror_depth);
   for (const std::vector<int>& chain : mirror_chains(pieces, depth, in_plane_)) {
     auto m = std::make_unique<Mirror>();
@@ -76,6 +85,33 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
     m->unfolded = unfold(scene, faces_, pieces, chain, in_plane_);
     m->pass = std::make_unique<LocalPass>(m->unfolded.scene, m->unfolded.faces, method, unfolded);
     mirrors_.push_back(std::move(m));
+  }
+  const int refraction_depth = settings.refraction_depth.value_or(scene.refraction_depth);
+  if (refraction_depth > 0) {
+    auto r = std::make_unique<Refracting>();
+    r->facets = refracting_facets(scene);
+    r->chains = refraction_chains(r->facets, refraction_depth, in_plane_);
+    if (!r->chains.empty()) {
+      r->scene = scene;
+      r->method = method;
+      refracting_ = std::move(r);
+    }
+  }
+}
+
+void LocalPass::add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& result) const {
+  const Refracting& r = *refracting_;
+  for (const RefractionChain& chain : r.chains) {
+    // x on the side the chain starts from: in front of its first facet, or behind it.
+    const double h = r.facets[chain.facets.front()].height(x);
+    if (!(chain.from_inside ? h < -in_plane_ : h > in_plane_)) continue;
+    for (const RefractedImage& image :
+         refracted_images(r.scene, faces_, r.facets, chain, x, in_plane_)) {
+      const auto gatherer =
+          make_exact_gatherer(r.method, image.unfolded.scene, image.unfolded.faces);
+      result.refracted += image.weight.cwiseProduct(exact_irradiance(*gatherer, x, n));
+      ++result.refracted_images;
+    }
   }
 }
 
@@ -107,6 +143,7 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
     result.gathers += r.gathers;
     ++result.mirrored;
   }
+  if (refracting_) add_refracted(x, n, result);
   return result;
 }
 

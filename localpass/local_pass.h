@@ -65,6 +65,10 @@ struct LocalPassSettings {
   /// faces (localpass/mirror_images.h), and the number of chains grows like
   /// (mirror pieces facing each other)^depth. Unset: the scene's (Scene::mirror_depth).
   std::optional<int> mirror_depth;
+  /// Longest chain of refracting facets gathered through (000 §4): 0 ignores refraction (the
+  /// interfaces are opaque), 2 sees through a convex block. Unset: the scene's
+  /// (Scene::refraction_depth).
+  std::optional<int> refraction_depth;
   /// Culling beams (000 §5): skip a mirror at points that cannot see anything radiating
   /// through it. false: every mirror at every point in front of it (the same values).
   bool mirror_culling = true;
@@ -85,6 +89,10 @@ struct LocalPassResult {
   int clusters = 0;          ///< Cluster intervals computed (one Lambert formula each)
   int gathers = 0;           ///< Exact gathers run (0 when nothing can light x)
   int mirrored = 0;          ///< Gathers at unfolded receivers (000 §3): one per chain not culled
+  /// H(x) refracted through transparent polyhedra (000 §4), by the paper's heuristic: NOT
+  /// covered by `bound`, and not in `irradiance`. The total is irradiance + refracted.
+  Rgb refracted = Rgb::Zero();
+  int refracted_images = 0;  ///< Exact gathers of refracted images (localpass/refraction_images.h)
 };
 
 /// The octree's items: one per face, with its polygon's normal and its exitance.
@@ -105,7 +113,9 @@ class LocalPass {
   /// own over c's unfolded scene (localpass/mirror_images.h), at x unfolded with its normal;
   /// the bounds add with the same weights (each is certified for its own term). With n terms
   /// at x, each is gathered to tolerance / n, so the total still meets the stopping rule.
-  /// Thread-safe.
+  /// Light refracted through transparent polyhedra goes to `refracted`, apart (000 §4: each
+  /// chain of facets x faces the first of, gathered exactly in its unfolded image at the
+  /// centroid angles, localpass/refraction_images.h). Thread-safe.
   LocalPassResult gather(const Vec3& x, const Vec3& n, double tolerance) const;
 
   const Octree& octree() const { return octree_; }
@@ -137,6 +147,10 @@ class LocalPass {
   std::vector<std::unique_ptr<Mirror>> mirrors_;
   double in_plane_ = 0;
   bool mirror_culling_ = true;
+  /// Refraction (000 §4): the facets, the chains through them, and what an image needs.
+  struct Refracting;
+  std::unique_ptr<const Refracting> refracting_;
+  void add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& result) const;
 };
 
 }  // namespace rad

@@ -25,27 +25,17 @@
 
 #include "geometry/emitting_face.h"
 #include "geometry/vec.h"
+#include "localpass/unfolding.h"
 #include "scene/mirror_pieces.h"
 #include "scene/scene.h"
 
 namespace rad {
 
-/// A chain's unfolded scene: its polygons are the unfolded faces themselves (one each, convex),
-/// its materials the scene's, their images' (specular 0) and the frame's (black, opaque).
-struct UnfoldedScene {
-  Scene scene;
-  std::vector<EmittingFace> faces;
-  Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();  ///< T_1 = R_k ... R_1: x -> x^(k)...
-  Vec3 translation = Vec3::Zero();                       ///< ...= linear x + translation
-  Rgb specular = Rgb::Ones();  ///< Product of the chain's specular reflectances
-  Vec3 receiver(const Vec3& x) const { return linear * x + translation; }
-  Vec3 receiver_normal(const Vec3& n) const { return linear * n; }
-};
-
-/// Unfolds `faces` (faces of `scene`) along the chain of `pieces`. Faces within `in_plane` of a
-/// plane count as on it: a leg bounded by that plane leaves them out (the mirror covers them,
-/// or they are seen edge-on). The frames reach from each outline to past the farthest point of
-/// the unfolded legs, which hold every mirrored receiver.
+/// Unfolds `faces` (faces of `scene`) along the chain of `pieces` (localpass/unfolding.h): its
+/// receiver map is T_1, its `specular` the product of the chain's specular reflectances. Faces
+/// within `in_plane` of a plane count as on it: a leg bounded by that plane leaves them out (the
+/// mirror covers them, or they are seen edge-on). The frames reach from each outline to past the
+/// farthest point of the unfolded legs, which hold every mirrored receiver.
 UnfoldedScene unfold(const Scene& scene, const std::vector<EmittingFace>& faces,
                      const std::vector<MirrorPiece>& pieces, const std::vector<int>& chain,
                      double in_plane);

@@ -11,6 +11,7 @@ namespace rad {
 MonteCarloGatherer::MonteCarloGatherer(const Scene& scene, const std::vector<EmittingFace>& faces) {
   faces_scene_.materials = scene.materials;
   faces_scene_.mirror_depth = scene.mirror_depth;
+  faces_scene_.refraction_depth = scene.refraction_depth;
   for (const EmittingFace& f : faces) {
     const Polygon& parent = scene.polygons[f.polygon];
     Polygon p = parent;
@@ -42,7 +43,7 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
       // on an edge the lift along n stays in the neighbour's); what lies that near the point
       // is passed (RayCaster::follow), as the exact gatherers see polygons through x edge-on.
       caster_->follow(
-          {origin - 0.5 * offset_ * d, d}, faces_scene_.mirror_depth, offset_,
+          {origin - 0.5 * offset_ * d, d}, RayCaster::limits_of(faces_scene_), offset_,
           [&](const Hit& hit, const Rgb& weight, int) {
             if (hit.front_facing) sum += weight.cwiseProduct(exitance_[hit.polygon]);
           },

@@ -100,7 +100,7 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
     // neighbour's); what lies that near the point is passed (RayCaster::follow), as the exact
     // gatherers see polygons through x edge-on.
     caster_.follow(
-        {p + offset_ * normal - 0.5 * offset_ * d, d}, scene_.mirror_depth, offset_,
+        {p + offset_ * normal - 0.5 * offset_ * d, d}, RayCaster::limits_of(scene_), offset_,
         [&](const Hit& hit, const Rgb& weight, int reflections) {
           if (!hit.front_facing) return;
           const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];

@@ -4,14 +4,17 @@
 /// is sampled. From x, a cosine-weighted direction is followed through filters and off mirrors
 /// (RayCaster::follow: both are deterministic splits, weighted by transmittance and specular
 /// reflectance); at each front-facing surface y met, the estimate gains E(y) + rho(y) H(y), and
-/// H(y) is estimated the same way from one new cosine-weighted direction at y. Since
+/// H(y) is estimated the same way from one new cosine-weighted direction at y; across refracting
+/// interfaces it is split into the refracted and the reflected ray, each followed exactly
+/// (Snell, Fresnel, total internal reflection, attenuation inside: RayCaster::follow). Since
 /// H = integral of (B / pi) cos theta dw, one cosine-weighted sample of B estimates H without a
 /// weight. The emitters seen along straight lines (through filters) are also sampled directly,
 /// a point on each emitting polygon with a shadow ray (next-event estimation: the small lamp of
 /// a Cornell box is found by few cosine rays), and the two estimates of that light are combined
 /// by multiple importance sampling (Veach's balance heuristic), which keeps each unbiased and
-/// tames both the small lamp and the emitters next to the point; emission met after a mirror is
-/// counted by the cosine rays alone. Russian roulette after the second bounce
+/// tames both the small lamp and the emitters next to the point; emission met after a mirror or
+/// an interface is counted by the cosine rays alone (a refracting polygon is opaque to the
+/// straight shadow rays). Russian roulette after the second bounce
 /// keeps a path with probability q = min(0.95, max_c rho) and divides by q. Every part is an
 /// unbiased estimate of its term, so the sum is.
 #include <array>

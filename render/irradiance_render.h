@@ -19,6 +19,9 @@ struct IrradianceImage {
   /// B = E + rho H [W/m^2] at front-facing primary hits, 0 elsewhere; through filters, the
   /// sum of the B of the surfaces along the eye ray, each times the transmittances in front.
   Image radiosity;
+  /// Of `radiosity`, the part refracted through transparent polyhedra by the heuristic of 000 §4
+  /// (w rho H_refracted): not covered by `bound`, which bounds radiosity - refracted.
+  Image refracted;
   Image bound;  ///< Sum of w rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
   /// Per pixel: faces gathered exactly (0 at misses, back sides, Monte Carlo; summed over the
   /// surfaces seen through filters, as the next two)

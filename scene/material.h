@@ -1,11 +1,27 @@
 #pragma once
 /// Materials (DESIGN.md §3, §5): one-sided Lambertian reflection and emission, plus the exact
-/// extensions of paper 000: a thin non-refractive filter (§2.2) and a plane mirror (§3).
+/// extensions of paper 000: a thin non-refractive filter (§2.2) and a plane mirror (§3), and the
+/// heuristic one: the interface of a refracting polyhedron (§4).
+#include <optional>
 #include <string>
 
 #include "geometry/vec.h"
 
 namespace rad {
+
+/// The interface of a transparent polyhedron (000 §4): behind the polygon's front side lies a
+/// medium of index `ior` (per channel: dispersion, §4.3), in front of it the outside, index 1.
+/// Light crosses it bent by Snell's law (000 eq. 6), passing `transmittance` of itself, or the
+/// Fresnel transmission at its angle when `fresnel`; inside it is dimmed by exp(-attenuation
+/// length). A refracting polygon is opaque to every straight-line query (what crosses it bends),
+/// and its light reaches a point only through the refracted paths.
+struct Refraction {
+  Rgb ior{1.5, 1.5, 1.5};      ///< n >= 1 per channel; the outside is 1
+  Rgb transmittance{1, 1, 1};  ///< Fraction passed at each crossing (when !fresnel)
+  bool fresnel = false;        ///< Unpolarised Fresnel transmission replaces transmittance
+  Rgb attenuation{0, 0, 0};    ///< Per unit length inside, >= 0
+  bool dispersive() const { return ior[0] != ior[1] || ior[1] != ior[2]; }
+};
 
 /// A surface material. Per channel reflectance + transmittance + specular <= 1 (the loader
 /// checks it); what is left is absorbed.
@@ -18,12 +34,17 @@ struct Material {
   Rgb transmittance{0, 0, 0};
   /// Plane-mirror reflectance of the front side (000 §3). 0: no mirror.
   Rgb specular{0, 0, 0};
+  /// Set for the interface of a refracting polyhedron ("ior" in the file; 000 §4). Its
+  /// `transmittance` above stays 0: a refracting polygon is no filter.
+  std::optional<Refraction> refraction{};
 
   bool is_emitter() const { return (emission.array() > 0).any(); }
   /// True when some channel passes light through (the polygon is not a full occluder).
   bool is_filter() const { return (transmittance.array() > 0).any(); }
   /// True when some channel reflects specularly.
   bool is_mirror() const { return (specular.array() > 0).any(); }
+  /// True for the interface of a refracting polyhedron.
+  bool refracts() const { return refraction.has_value(); }
 };
 
 }  // namespace rad

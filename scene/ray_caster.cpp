@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "geometry/refraction.h"
 #include "scene/error.h"
 
 namespace rad {
@@ -164,33 +165,85 @@ Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double 
   }
 }
 
-void RayCaster::follow(const Ray& ray, int mirror_depth, double gap,
+void RayCaster::follow(const Ray& ray, Bends limits, double gap,
                        const std::function<void(const Hit&, const Rgb&, int)>& visit,
                        double near) const {
   struct Branch {
     Ray ray;
     Rgb weight;
     double t_min;
-    int reflections;
+    Bends bends;
+    Rgb attenuation = Rgb::Zero();  ///< Of the medium this leg runs through (0: outside)
+    bool first_leg() const { return bends.reflections == 0 && bends.refractions == 0; }
   };
-  std::vector<Branch> branches{{ray, Rgb::Ones(), 0.0, 0}};
+  std::vector<Branch> branches{{ray, Rgb::Ones(), 0.0, {}}};
   while (!branches.empty()) {
     Branch b = branches.back();
     branches.pop_back();
-    const bool first_leg = b.reflections == 0;
+    double attenuated_to = 0;  // distance along this leg the medium has dimmed the weight to
     while (true) {
       const auto hit = closest_hit(b.ray, b.t_min);
       if (!hit) break;
-      if (first_leg && hit->distance < near) {
+      if (b.first_leg() && hit->distance < near) {
         b.t_min = std::max(hit->distance, b.t_min) + gap;
         continue;
       }
-      visit(*hit, b.weight, b.reflections);
+      if (b.attenuation != Rgb::Zero() && hit->distance > attenuated_to) {
+        const Rgb lost = -b.attenuation * (hit->distance - attenuated_to);
+        b.weight = b.weight.cwiseProduct(Rgb(lost.array().exp()));
+        attenuated_to = hit->distance;
+      }
+      const int bends = b.bends.reflections + b.bends.refractions;
+      visit(*hit, b.weight, bends);
       const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
-      if (hit->front_facing && m.is_mirror() && b.reflections < mirror_depth) {
-        const Vec3 d = b.ray.direction - 2 * hit->normal.dot(b.ray.direction) * hit->normal;
-        branches.push_back(
-            {{hit->point, d}, b.weight.cwiseProduct(m.specular), gap, b.reflections + 1});
+      if (hit->front_facing && m.is_mirror() && b.bends.reflections < limits.reflections) {
+        Bends next = b.bends;
+        ++next.reflections;
+        branches.push_back({{hit->point, reflect(b.ray.direction, hit->normal)},
+                            b.weight.cwiseProduct(m.specular),
+                            gap,
+                            next,
+                            b.attenuation});
+      }
+      if (m.refracts() && b.bends.refractions < limits.refractions) {
+        // 000 §4: into the medium at a front, out of it at a back (fronts face out).
+        const Refraction& r = *m.refraction;
+        const Vec3& d = b.ray.direction;
+        const double cos_near = std::abs(hit->normal.dot(d));
+        Bends next = b.bends;
+        ++next.refractions;
+        const Rgb inside = r.attenuation, beyond = hit->front_facing ? inside : Rgb::Zero();
+        Rgb reflected = Rgb::Zero();
+        // One ray per distinct index: three for a dispersive interface, one otherwise.
+        for (int c = 0; c < 3; ++c) {
+          if (r.dispersive() ? false : c > 0) break;
+          const double eta = hit->front_facing ? r.ior[c] : 1 / r.ior[c];
+          Rgb channels = Rgb::Zero();
+          if (r.dispersive()) {
+            channels[c] = 1;
+          } else {
+            channels = Rgb::Ones();
+          }
+          const std::optional<Vec3> t = refract(d, hit->normal, eta);
+          if (!t) {
+            reflected += channels;  // total internal reflection, Fresnel or not
+            continue;
+          }
+          const double fresnel = r.fresnel ? fresnel_transmission(cos_near, eta) : 0;
+          const Rgb passed =
+              r.fresnel ? Rgb(fresnel * channels) : channels.cwiseProduct(r.transmittance);
+          if (r.fresnel) reflected += (1 - fresnel) * channels;
+          branches.push_back(
+              {{hit->point, *t}, b.weight.cwiseProduct(passed) / (eta * eta), gap, next, beyond});
+        }
+        if (reflected != Rgb::Zero()) {
+          // Back into the medium the ray came through.
+          branches.push_back({{hit->point, reflect(d, hit->normal)},
+                              b.weight.cwiseProduct(reflected),
+                              gap,
+                              next,
+                              hit->front_facing ? Rgb(Rgb::Zero()) : inside});
+        }
       }
       b.weight = b.weight.cwiseProduct(m.transmittance);
       if (b.weight == Rgb::Zero()) break;

@@ -56,18 +56,39 @@ class RayCaster {
   /// True when some polygon's material is a filter.
   bool has_filters() const { return has_filters_; }
 
-  /// Follows a ray through filters (on, times the transmittance: 000 §2.2) and off the fronts
-  /// of mirrors (reflected, times the specular reflectance, at most `mirror_depth` times along
-  /// a path: 000 §3), calling visit(hit, weight) for each surface met, weight the product of
-  /// what the filters and mirrors before it passed on. Ends at opaque surfaces and misses.
-  /// Hits closer than `gap` to the previous one are the same surface. Surfaces met within
-  /// `near` of the ray's origin on its first leg are passed through: for a ray started a little
-  /// off its receiver point (along the normal, and back along the ray, so that it never starts
-  /// inside a plane), they are polygons whose plane holds the point (an edge, a wall's foot),
-  /// which the exact gatherers see edge-on: no solid angle, no occlusion. Without filters and
-  /// mirrors: the first hit alone, with weight 1.
-  /// visit(hit, weight, reflections): `reflections` mirrors lie on the way to the hit.
-  void follow(const Ray& ray, int mirror_depth, double gap,
+  /// How many bends RayCaster::follow takes along one path.
+  struct Bends {
+    int reflections = 0;  ///< Off the fronts of plane mirrors (000 §3)
+    int refractions = 0;  ///< Crossings of refracting interfaces, and their reflections (§4)
+  };
+  /// The scene's limits: mirror_depth and refraction_depth.
+  static Bends limits_of(const Scene& scene) {
+    return {scene.mirror_depth, scene.refraction_depth};
+  }
+
+  /// Follows a ray through filters (on, times the transmittance: 000 §2.2), off the fronts of
+  /// mirrors (reflected, times the specular reflectance: 000 §3) and across refracting
+  /// interfaces (000 §4), calling visit(hit, weight, bends) for each surface met, weight the
+  /// product of what the filters, mirrors and interfaces before it passed on, bends how many
+  /// mirrors and interfaces lie on the way. At most `limits` of each along a path.
+  /// A refracting interface splits the path in two, each followed exactly:
+  ///  - the refracted ray (Snell, 000 eq. 6), times the interface's transmittance (or the
+  ///    Fresnel transmission) and times 1 / eta^2, eta = n_far / n_near: radiance over n^2 is
+  ///    what a crossing keeps, and this follows light backwards; a dispersive interface splits
+  ///    it into one ray per channel (§4.3);
+  ///  - the reflected ray, times the Fresnel reflection (with "fresnel") or 1 in the channels
+  ///    past the critical angle (total internal reflection, either way).
+  /// Inside (after crossing into a front, until crossing out of one) the weight falls as
+  /// exp(-attenuation length). A path that starts inside a refracting object is not known to
+  /// be inside: no attenuation on its first leg.
+  /// Ends at opaque surfaces and misses. Hits closer than `gap` to the previous one are the
+  /// same surface. Surfaces met within `near` of the ray's origin on its first leg are passed
+  /// through: for a ray started a little off its receiver point (along the normal, and back
+  /// along the ray, so that it never starts inside a plane), they are polygons whose plane
+  /// holds the point (an edge, a wall's foot), which the exact gatherers see edge-on: no solid
+  /// angle, no occlusion. Without filters, mirrors and refraction: the first hit alone, with
+  /// weight 1.
+  void follow(const Ray& ray, Bends limits, double gap,
               const std::function<void(const Hit&, const Rgb&, int)>& visit, double near = 0) const;
 
   const Scene& scene() const { return scene_; }

@@ -59,8 +59,17 @@ std::string Scene::fingerprint() const {
     // they had before these keys existed.
     if (m.is_filter()) add(m.transmittance.data(), 3 * sizeof(double));
     if (m.is_mirror()) add(m.specular.data(), 3 * sizeof(double));
+    if (m.refracts()) {
+      const Refraction& r = *m.refraction;
+      add(r.ior.data(), 3 * sizeof(double));
+      add(r.transmittance.data(), 3 * sizeof(double));
+      add(r.attenuation.data(), 3 * sizeof(double));
+      const char fresnel = r.fresnel;
+      add(&fresnel, 1);
+    }
   }
   if (mirror_depth != kDefaultMirrorDepth) add(&mirror_depth, sizeof(mirror_depth));
+  if (refraction_depth != kDefaultRefractionDepth) add(&refraction_depth, sizeof(refraction_depth));
   char text[17];
   std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash));
   return text;

@@ -48,6 +48,10 @@ struct Scene {
   /// (000 §3; "mirror_depth" in the file, 0 to 8).
   static constexpr int kDefaultMirrorDepth = 2;
   int mirror_depth = kDefaultMirrorDepth;
+  /// Most crossings of refracting interfaces a path follows (000 §4: the facets of a chain;
+  /// "refraction_depth" in the file, 0 to 8). 2 sees through a convex block (in, then out).
+  static constexpr int kDefaultRefractionDepth = 2;
+  int refraction_depth = kDefaultRefractionDepth;
   std::vector<std::string> warnings;  ///< Things loading fixed or noticed, one line each.
 
   /// "objects[2] \"tall block\" polygon 5" (plus " triangle 1" for a split polygon).

@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <tuple>
 
+#include "scene/closed_surface.h"
 #include "scene/error.h"
 #include "scene/limits.h"
 #include "scene/mesh_reader.h"
@@ -151,16 +153,76 @@ class Reader {
   std::string file_;
 };
 
+/// The refraction keys of a material with "ior" (000 §4). A refracting material is clear glass
+/// unless told otherwise: reflectance 0 and transmittance 1 when the file omits them.
+Refraction read_refraction(const Reader& in, const std::string& where, const Json& j, Material& m) {
+  Refraction r;
+  r.ior = in.rgb(j["ior"], where + ".ior");
+  for (int c = 0; c < 3; ++c) {
+    if (!(r.ior[c] >= 1)) {
+      std::ostringstream msg;
+      msg << "ior[" << c << "] = " << r.ior[c]
+          << " is below 1 (the index of the medium behind the front side, the outside being 1;"
+             " face the polygons out of the denser medium)";
+      in.fail(where, msg.str());
+    }
+  }
+  if (j.contains("fresnel")) {
+    if (!j["fresnel"].is_boolean()) in.fail(where + ".fresnel", "expected true or false");
+    r.fresnel = j["fresnel"].get<bool>();
+  }
+  if (j.contains("transmittance")) {
+    if (r.fresnel) {
+      in.fail(where,
+              "has both \"transmittance\" and \"fresnel\": true (the Fresnel "
+              "transmission replaces the transmittance; give one)");
+    }
+    r.transmittance = in.rgb(j["transmittance"], where + ".transmittance");
+  }
+  if (j.contains("attenuation")) r.attenuation = in.rgb(j["attenuation"], where + ".attenuation");
+  for (int c = 0; c < 3; ++c) {
+    if (!(r.attenuation[c] >= 0)) {
+      std::ostringstream msg;
+      msg << "attenuation[" << c << "] = " << r.attenuation[c]
+          << " is negative (a medium cannot add light along a path)";
+      in.fail(where, msg.str());
+    }
+  }
+  if (!j.contains("reflectance")) m.reflectance = Rgb::Zero();
+  return r;
+}
+
 Material read_material(const Reader& in, const std::string& name, const Json& j) {
   const std::string where = "materials.\"" + name + "\"";
-  in.require_object(j, where, {"reflectance", "emission", "transmittance", "specular"});
+  in.require_object(
+      j, where,
+      {"reflectance", "emission", "transmittance", "specular", "ior", "fresnel", "attenuation"});
   Material m;
   m.name = name;
   if (j.contains("reflectance")) m.reflectance = in.rgb(j["reflectance"], where + ".reflectance");
   if (j.contains("emission")) m.emission = in.rgb(j["emission"], where + ".emission");
-  if (j.contains("transmittance"))
-    m.transmittance = in.rgb(j["transmittance"], where + ".transmittance");
+  if (j.contains("ior")) {
+    m.refraction = read_refraction(in, where, j, m);
+  } else {
+    for (const char* key : {"fresnel", "attenuation"}) {
+      if (j.contains(key))
+        in.fail(where, std::string("has \"") + key + "\" but no \"ior\" (it refracts nothing)");
+    }
+    if (j.contains("transmittance"))
+      m.transmittance = in.rgb(j["transmittance"], where + ".transmittance");
+  }
   if (j.contains("specular")) m.specular = in.rgb(j["specular"], where + ".specular");
+  // What a refracting interface passes counts against the same incident light as a filter's;
+  // the Fresnel transmission is largest at normal incidence, 1 - ((n - 1) / (n + 1))^2.
+  Rgb passed = m.transmittance;
+  if (m.refracts()) {
+    const Refraction& r = *m.refraction;
+    passed = r.transmittance;
+    if (r.fresnel) {
+      const Rgb reflected = ((r.ior.array() - 1) / (r.ior.array() + 1)).square();
+      passed = Rgb::Ones() - reflected;
+    }
+  }
   for (int c = 0; c < 3; ++c) {
     if (!(m.reflectance[c] >= 0 && m.reflectance[c] < 1)) {
       std::ostringstream msg;
@@ -173,9 +235,8 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
       msg << "emission[" << c << "] = " << m.emission[c] << " is negative";
       in.fail(where, msg.str());
     }
-    for (const auto& [key, value] :
-         {std::pair<const char*, double>{"transmittance", m.transmittance[c]},
-          {"specular", m.specular[c]}}) {
+    for (const auto& [key, value] : {std::pair<const char*, double>{"transmittance", passed[c]},
+                                     {"specular", m.specular[c]}}) {
       if (!(value >= 0 && value <= 1)) {
         std::ostringstream msg;
         msg << key << "[" << c << "] = " << value << " is outside [0, 1]";
@@ -184,7 +245,7 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
     }
     // What a filter passes and a mirror reflects come out of the same incident light as the
     // diffuse part (000 §2.2, §3).
-    const double sum = m.reflectance[c] + m.transmittance[c] + m.specular[c];
+    const double sum = m.reflectance[c] + passed[c] + m.specular[c];
     if (sum > 1) {
       std::ostringstream msg;
       msg << "reflectance + transmittance + specular = " << sum << " in channel " << c
@@ -277,14 +338,18 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
 
   Scene scene;
   scene.path = file;
-  in.require_object(root, "top level", {"materials", "objects", "camera", "mirror_depth"});
-  if (root.contains("mirror_depth")) {
-    const Json& depth = root["mirror_depth"];
-    if (!depth.is_number_integer() || depth.get<long long>() < 0 || depth.get<long long>() > 8) {
-      in.fail("mirror_depth",
-              "expected an integer from 0 to 8 (reflections followed), got " + depth.dump());
+  in.require_object(root, "top level",
+                    {"materials", "objects", "camera", "mirror_depth", "refraction_depth"});
+  for (const auto& [key, depth, what] :
+       {std::tuple{"mirror_depth", &scene.mirror_depth, "reflections followed"},
+        {"refraction_depth", &scene.refraction_depth, "refracting interfaces crossed"}}) {
+    if (!root.contains(key)) continue;
+    const Json& value = root[key];
+    if (!value.is_number_integer() || value.get<long long>() < 0 || value.get<long long>() > 8) {
+      in.fail(key,
+              std::string("expected an integer from 0 to 8 (") + what + "), got " + value.dump());
     }
-    scene.mirror_depth = depth.get<int>();
+    *depth = value.get<int>();
   }
 
   // Materials
@@ -362,6 +427,21 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
       in.fail(where, "the scene has more than " + std::to_string(limits::kPolygons) + " polygons");
     }
     object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
+    if (scene.materials[object.material].refracts()) {
+      // 000 §4 follows light into a polyhedron and out through another of its facets.
+      const SurfaceClosure closure =
+          surface_closure(scene.polygons, object.first_polygon, object.polygon_count);
+      if (closure.unpartnered_edges > 0) {
+        scene.warnings.push_back(
+            in.at(where) + ": refracting but not closed (" +
+            std::to_string(closure.unpartnered_edges) +
+            " edges without a reversed partner); light that enters it may not leave");
+      } else if (!(closure.volume > 0)) {
+        scene.warnings.push_back(in.at(where) +
+                                 ": refracting with its fronts facing in (the index is of "
+                                 "the medium behind the front side)");
+      }
+    }
     scene.objects.push_back(std::move(object));
   }
   if (scene.polygons.empty()) in.fail("objects", "the scene has no polygons");

@@ -21,6 +21,45 @@ class SceneBuilder {
     scene_.materials.push_back(Material{name, reflectance, emission, transmittance, specular});
     return static_cast<int>(scene_.materials.size()) - 1;
   }
+  /// Adds the interface of a refracting polyhedron (000 §4), black otherwise.
+  int material(const std::string& name, const Refraction& refraction) {
+    Material m{name, Rgb::Zero(), Rgb::Zero()};
+    m.refraction = refraction;
+    scene_.materials.push_back(m);
+    return static_cast<int>(scene_.materials.size()) - 1;
+  }
+  /// An axis-aligned box [lo, hi], its six faces' fronts facing out: one object.
+  void box(const Vec3& lo, const Vec3& hi, int material) {
+    const int first = static_cast<int>(scene_.polygons.size());
+    const int object = static_cast<int>(scene_.objects.size());
+    rectangle(lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), true, material);
+    rectangle(lo.x(), hi.x(), lo.y(), hi.y(), hi.z(), false, material);
+    polygon({{lo.x(), lo.y(), lo.z()},
+             {hi.x(), lo.y(), lo.z()},
+             {hi.x(), lo.y(), hi.z()},
+             {lo.x(), lo.y(), hi.z()}},
+            material);
+    polygon({{lo.x(), hi.y(), lo.z()},
+             {lo.x(), hi.y(), hi.z()},
+             {hi.x(), hi.y(), hi.z()},
+             {hi.x(), hi.y(), lo.z()}},
+            material);
+    polygon({{lo.x(), lo.y(), lo.z()},
+             {lo.x(), lo.y(), hi.z()},
+             {lo.x(), hi.y(), hi.z()},
+             {lo.x(), hi.y(), lo.z()}},
+            material);
+    polygon({{hi.x(), lo.y(), lo.z()},
+             {hi.x(), hi.y(), lo.z()},
+             {hi.x(), hi.y(), hi.z()},
+             {hi.x(), lo.y(), hi.z()}},
+            material);
+    // One object of six faces.
+    scene_.objects.resize(object + 1);
+    scene_.objects[object].polygon_count = static_cast<int>(scene_.polygons.size()) - first;
+    for (int p = first; p < static_cast<int>(scene_.polygons.size()); ++p)
+      scene_.polygons[p].object = object;
+  }
   /// Adds a polygon (counter-clockwise from its front) and returns its index.
   int polygon(std::vector<Vec3> vertices, int material) {
     const int object = static_cast<int>(scene_.objects.size());

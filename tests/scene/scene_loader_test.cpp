@@ -110,6 +110,80 @@ TEST(SceneLoader, ReadsFiltersAndMirrors) {
   EXPECT_TRUE(material(2).is_mirror() && !material(2).is_filter());
 }
 
+// The six faces of the unit cube, fronts out (counter-clockwise seen from outside), as JSON;
+// `faces` of them, and turned inside out when `inward`.
+std::string cube_polygons(int faces = 6, bool inward = false) {
+  const char* all[6] = {"[[0,0,0],[0,1,0],[1,1,0],[1,0,0]]", "[[0,0,1],[1,0,1],[1,1,1],[0,1,1]]",
+                        "[[0,0,0],[1,0,0],[1,0,1],[0,0,1]]", "[[0,1,0],[0,1,1],[1,1,1],[1,1,0]]",
+                        "[[0,0,0],[0,0,1],[0,1,1],[0,1,0]]", "[[1,0,0],[1,1,0],[1,1,1],[1,0,1]]"};
+  std::string out = "[";
+  for (int f = 0; f < faces; ++f) {
+    std::string face = all[f];
+    if (inward) {  // reverse the vertex order
+      std::vector<std::string> v;
+      for (size_t i = 1; i < face.size() - 1;) {
+        const size_t end = face.find(']', i) + 1;
+        v.push_back(face.substr(i, end - i));
+        i = end + 1;
+      }
+      face = "[" + v[3] + "," + v[2] + "," + v[1] + "," + v[0] + "]";
+    }
+    out += (f ? "," : "") + face;
+  }
+  return out + "]";
+}
+
+Scene glass_cube(const std::string& glass, int faces = 6, bool inward = false) {
+  return parse_scene(R"({"materials": {"glass": )" + glass +
+                         R"(}, "objects": [{"name": "block", "material": "glass", "polygons": )" +
+                         cube_polygons(faces, inward) + "}]}",
+                     "inline.json");
+}
+
+TEST(SceneLoader, ReadsRefraction) {
+  // 000 §4: "ior" makes an interface; clear glass unless told otherwise (reflectance 0,
+  // transmittance 1); one index or three (dispersion, §4.3).
+  const Scene plain = glass_cube(R"({"ior": 1.5})");
+  EXPECT_TRUE(plain.warnings.empty()) << plain.warnings.front();
+  const Material& m = plain.materials[0];
+  ASSERT_TRUE(m.refracts());
+  EXPECT_EQ(m.refraction->ior, Rgb(1.5, 1.5, 1.5));
+  EXPECT_EQ(m.refraction->transmittance, Rgb::Ones());
+  EXPECT_EQ(m.refraction->attenuation, Rgb::Zero());
+  EXPECT_FALSE(m.refraction->fresnel || m.refraction->dispersive());
+  EXPECT_EQ(m.reflectance, Rgb::Zero());
+  EXPECT_FALSE(m.is_filter()) << "a refracting polygon is no filter: its light bends";
+  EXPECT_EQ(m.transmittance, Rgb::Zero());
+
+  const Scene prism = glass_cube(
+      R"({"ior": [1.51, 1.52, 1.53], "fresnel": true, "attenuation": [0, 0.1, 0.2], "reflectance": 0.02})");
+  const Refraction& r = *prism.materials[0].refraction;
+  EXPECT_TRUE(r.dispersive() && r.fresnel);
+  EXPECT_EQ(r.attenuation, Rgb(0, 0.1, 0.2));
+  EXPECT_EQ(prism.materials[0].reflectance, Rgb::Constant(0.02));
+  EXPECT_NE(prism.fingerprint(), plain.fingerprint());
+  EXPECT_NE(glass_cube(R"({"ior": 1.4})").fingerprint(), plain.fingerprint());
+
+  // The Fresnel transmission at normal incidence (0.96 for n = 1.5) counts against the rest.
+  EXPECT_NO_THROW(glass_cube(R"({"ior": 1.5, "fresnel": true, "reflectance": 0.03})"));
+  EXPECT_THROW(glass_cube(R"({"ior": 1.5, "fresnel": true, "reflectance": 0.05})"), InputError);
+  EXPECT_THROW(glass_cube(R"({"ior": 1.5, "transmittance": 0.9, "reflectance": 0.2})"), InputError);
+}
+
+TEST(SceneLoader, WarnsOfARefractingObjectThatIsNotClosedOrFacesIn) {
+  const Scene open = glass_cube(R"({"ior": 1.5})", 5);
+  ASSERT_EQ(open.warnings.size(), 1u);
+  EXPECT_NE(open.warnings[0].find("objects[0] \"block\": refracting but not closed (4 edges"),
+            std::string::npos)
+      << open.warnings[0];
+  const Scene inside_out = glass_cube(R"({"ior": 1.5})", 6, true);
+  ASSERT_EQ(inside_out.warnings.size(), 1u);
+  EXPECT_NE(inside_out.warnings[0].find("fronts facing in"), std::string::npos)
+      << inside_out.warnings[0];
+  // The same open box of an opaque material is a box.
+  EXPECT_TRUE(glass_cube(R"({"reflectance": 0.5})", 5).warnings.empty());
+}
+
 TEST(SceneLoader, NonFiniteLiteralsInsideStringsAreLeftAlone) {
   // "NaN" inside a name is text, not a number.
   const Scene scene = parse_scene(R"({"materials": {"m": {}},

@@ -1,0 +1,79 @@
+#pragma once
+/// Light refracted through transparent polyhedra by apparent depth contraction (paper 000 §4):
+/// seen from x through a facet f (centroid c, normal n) of a medium of relative index eta =
+/// n_far / n_near, everything behind f appears moved toward f's plane along n, depths scaled by
+/// k = cos / sqrt(eta^2 - 1 + cos^2) (eqs. 7-9), cos taken once, on the line from x to c
+/// (§4.2). Polygons stay polygons, so a chain of facets f_1 .. f_k (in at one, out at another)
+/// unfolds like a chain of mirrors (localpass/unfolding.h): leg j beyond f_j is mapped by
+/// M_j = T_1 ... T_j (T_j the contraction at f_j), and the exact gatherers gather the moved
+/// sources through the moved outlines at the real x, knowing nothing of refraction.
+///
+/// A heuristic, as the paper says: one angle per facet, so a source seen through a facet that
+/// subtends a wide angle lands in the wrong place; no focusing (caustics). It is kept apart
+/// from the certified bound (LocalPassResult::refracted).
+///
+/// Choices where the paper is silent:
+///  - the angle at f_j (j >= 2) is taken on the centroid path, from c_(j-1) to c_j: the path the
+///    attenuation is measured along, independent of where x is;
+///  - the weight of a chain in channel c is the product over its crossings of what each passes
+///    (the transmittance, or the Fresnel transmission at the centroid angle) and of 1 / eta^2
+///    (radiance over n^2 is what a crossing keeps: the path tracer shows it is needed, tests/
+///    localpass/path_tracer_refraction_test.cpp), times exp(-attenuation length) over the legs
+///    of the centroid path inside a medium;
+///  - total internal reflection at f_j in a channel (eta^2 - 1 + cos^2 <= 0) passes nothing in
+///    it, and the light it reflects is not followed (§4.2: "no light through that facet");
+///  - one index per channel (§4.3): the channels whose ratios differ get images of their own.
+#include <vector>
+
+#include "geometry/emitting_face.h"
+#include "localpass/unfolding.h"
+#include "scene/scene.h"
+
+namespace rad {
+
+/// One convex piece of a refracting polygon (000 §4), as an aperture.
+struct RefractingFacet {
+  int polygon = -1;
+  int object = -1;            ///< Its polygon's object: a chain goes in and out of one object
+  std::vector<Vec3> outline;  ///< Convex, counter-clockwise about `normal`
+  Vec3 normal{0, 0, 1};       ///< Unit front normal, out of the medium
+  double offset = 0;          ///< normal . p = offset on its plane
+  Vec3 centroid = Vec3::Zero();
+  Refraction refraction;
+  double height(const Vec3& p) const { return normal.dot(p) - offset; }
+};
+
+/// The convex pieces of the scene's refracting polygons, in polygon order.
+std::vector<RefractingFacet> refracting_facets(const Scene& scene);
+
+/// A chain of facets crossed on the way from a receiver to the sources: from outside (x in
+/// front of the first facet) in at odd positions and out at even ones; from inside (x behind
+/// it) out first. Every chain ends outside, where the sources are.
+struct RefractionChain {
+  std::vector<int> facets;
+  bool from_inside = false;
+};
+
+/// The chains of at most `depth` crossings: each facet crossed into is followed by a facet of
+/// the same object (another one, partly behind it, which it lies partly behind), and each
+/// facet crossed out of by a facet partly in front of it (which it lies partly in front of).
+std::vector<RefractionChain> refraction_chains(const std::vector<RefractingFacet>& facets,
+                                               int depth, double in_plane);
+
+/// What one chain shows x: an unfolded scene and the weight of what it gathers, per channel
+/// (0 in the channels it does not carry).
+struct RefractedImage {
+  UnfoldedScene unfolded;
+  Rgb weight = Rgb::Zero();
+};
+
+/// The images of `chain` at x (000 eqs. 7-9 at the centroid angles): one for all channels, or
+/// one per group of channels with the same indices; none in a channel past a critical angle,
+/// or when x sees a facet of the chain edge-on. `faces` are what radiates and hides.
+std::vector<RefractedImage> refracted_images(const Scene& scene,
+                                             const std::vector<EmittingFace>& faces,
+                                             const std::vector<RefractingFacet>& facets,
+                                             const RefractionChain& chain, const Vec3& x,
+                                             double in_plane);
+
+}  // namespace rad

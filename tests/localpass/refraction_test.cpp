@@ -1,0 +1,164 @@
+// Refraction through polyhedra by apparent depth contraction (paper 000 §4) in the local pass:
+// its exact limits, each against something that does not use localpass/refraction_images.h:
+// index 1 against the thin filters of 000 §2.2 (vertex tracing through the same box as two
+// filters), total internal reflection, one index per channel against three grey runs, and a
+// huge uniform slab against Lambert's formula without it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "localpass/local_pass.h"
+#include "localpass/refraction_images.h"
+#include "scene/polygon_faces.h"
+#include "tests/closed_forms.h"
+#include "tests/scene_builder.h"
+
+namespace rad {
+namespace {
+
+using test::SceneBuilder;
+
+/// A lamp (M = 1, [0, 1]^2 at z = 3, facing down) over a box [0.2, 0.8]^2 x [1, 2] of
+/// `glass`, over a grey floor (its front up, not radiating: direct light only).
+Scene lamp_over_box(const Material& glass, int refraction_depth = 2) {
+  SceneBuilder b;
+  b.rectangle(0, 1, 0, 1, 3, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+  b.scene().materials.push_back(glass);
+  b.box({0.2, 0.2, 1}, {0.8, 0.8, 2}, static_cast<int>(b.scene().materials.size()) - 1);
+  b.rectangle(-2, 3, -2, 3, 0, false, b.material("floor", Rgb::Constant(0.5), Rgb::Zero()));
+  b.scene().refraction_depth = refraction_depth;
+  return b.scene();
+}
+
+Material refracting(const Rgb& ior, const Rgb& transmittance = Rgb::Ones()) {
+  Material m{"glass", Rgb::Zero(), Rgb::Zero()};
+  m.refraction = Refraction{ior, transmittance, false, Rgb::Zero()};
+  return m;
+}
+
+const Vec3 kUp = Vec3::UnitZ();
+const Vec3 kFloorPoints[] = {{0.5, 0.5, 0}, {0.35, 0.6, 0}, {0.1, 0.45, 0}, {0.9, 0.05, 0}};
+
+LocalPassResult gather(const Scene& scene, const Vec3& x) {
+  const LocalPass pass(scene, faces_from_polygons(scene), Method::vertex);
+  return pass.gather(x, kUp, 0);
+}
+
+TEST(Refraction, IndexOneIsTheThinFilter) {
+  // At index 1 nothing moves (k = 1) and each crossing passes t: the chains in at one facet
+  // and out at another sum to the straight lines through the box, which cross two of its
+  // faces. The same box as filters (t at each face, 000 §2.2) gathers that exactly.
+  const Rgb t(0.3, 0.6, 0.9);
+  const Scene glass = lamp_over_box(refracting(Rgb::Ones(), t));
+  const Scene filter = lamp_over_box(Material{"glass", Rgb::Zero(), Rgb::Zero(), t});
+  int through = 0;
+  for (const Vec3& x : kFloorPoints) {
+    const LocalPassResult r = gather(glass, x);
+    const LocalPassResult f = gather(filter, x);
+    const Rgb total = r.irradiance + r.refracted;
+    EXPECT_LE((total - f.irradiance).cwiseAbs().maxCoeff(), 1e-12 * f.irradiance.maxCoeff())
+        << "at " << x.transpose() << ": " << r.irradiance.transpose() << " + "
+        << r.refracted.transpose() << " against the filters' " << f.irradiance.transpose();
+    EXPECT_EQ(r.bound, Rgb::Zero());
+    if (r.refracted.maxCoeff() > 0.01 * f.irradiance.maxCoeff()) ++through;
+  }
+  EXPECT_GE(through, 3) << "the light through the box must be a real part of the check";
+}
+
+TEST(Refraction, EachChannelIsItsOwnGreyRun) {
+  // 000 §4.3: three indices, three virtual sources; channel c equals the run with index c.
+  const Rgb ior(1.4, 1.5, 1.7);
+  const Scene dispersive = lamp_over_box(refracting(ior, Rgb(0.9, 0.8, 0.7)));
+  for (const Vec3& x : kFloorPoints) {
+    const LocalPassResult r = gather(dispersive, x);
+    for (int c = 0; c < 3; ++c) {
+      const LocalPassResult grey =
+          gather(lamp_over_box(refracting(Rgb::Constant(ior[c]), Rgb(0.9, 0.8, 0.7))), x);
+      EXPECT_NEAR(r.refracted[c], grey.refracted[c], 1e-12 * grey.refracted.maxCoeff())
+          << "channel " << c << " at " << x.transpose();
+      EXPECT_EQ(r.irradiance[c], grey.irradiance[c]);
+    }
+  }
+  EXPECT_GT(gather(dispersive, kFloorPoints[0]).refracted_images, 3) << "one image per index";
+}
+
+TEST(Refraction, PastTheCriticalAngleNothingComesThrough) {
+  // Seen from inside (eta = 1 / n) at cos^2 <= 1 - 1 / n^2 a facet passes nothing: x inside a
+  // wide flat slab looks at the top facet's centroid far off to the side.
+  SceneBuilder b;
+  b.rectangle(-50, 50, -50, 50, 3, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+  const int glass = b.material("glass", Refraction{Rgb(1.5, 1.5, 1.05), Rgb::Ones()});
+  b.box({0, -10, 0}, {40, 10, 1}, glass);
+  const Scene& scene = b.scene();
+  const std::vector<RefractingFacet> facets = refracting_facets(scene);
+  const std::vector<EmittingFace> faces = faces_from_polygons(scene);
+  int top = -1;
+  for (size_t i = 0; i < facets.size(); ++i) {
+    if (facets[i].normal.z() > 0.5) top = static_cast<int>(i);
+  }
+  ASSERT_GE(top, 0);
+  const RefractionChain out_through_the_top{{top}, true};
+  // From (19.25, 0, 0.5) the top's centroid (20, 0, 1) is at cos^2 = 0.25 / 0.8125: past the
+  // critical angle of n = 1.5 (cos^2 <= 1 - 1 / 1.5^2) but not of n = 1.05 (the blue channel).
+  const std::vector<RefractedImage> images =
+      refracted_images(scene, faces, facets, out_through_the_top, {19.25, 0, 0.5}, 1e-9);
+  ASSERT_EQ(images.size(), 1u);
+  const double cos2 = 0.25 / 0.8125;
+  EXPECT_LE(cos2, 1 - 1 / (1.5 * 1.5));
+  EXPECT_GT(cos2, 1 - 1 / (1.05 * 1.05));
+  EXPECT_EQ(images[0].weight.head<2>(), Eigen::Vector2d::Zero()) << "red and green: TIR";
+  EXPECT_GT(images[0].weight[2], 0);
+  // Right under the centroid every channel comes through, n^2 brighter (radiance kept / n^2).
+  const std::vector<RefractedImage> under =
+      refracted_images(scene, faces, facets, out_through_the_top, {20, 0, 0.5}, 1e-9);
+  ASSERT_EQ(under.size(), 2u);  // the two grey channels share one image
+  EXPECT_NEAR(under[0].weight[0], 1.5 * 1.5, 1e-15);
+  // A hair past the critical angle: nothing; a hair short of it: all of it (the depth ratio
+  // grows without bound there, the weight does not).
+  const double critical_cos = std::sqrt(1 - 1 / 2.25);
+  const double dx = 0.5 * std::sqrt(1 - critical_cos * critical_cos) / critical_cos;
+  for (const RefractedImage& i : refracted_images(scene, faces, facets, out_through_the_top,
+                                                  {20 - dx * (1 + 1e-9), 0, 0.5}, 1e-9)) {
+    EXPECT_EQ(i.weight[0], 0.0) << "past the critical angle";
+  }
+  const std::vector<RefractedImage> short_of = refracted_images(
+      scene, faces, facets, out_through_the_top, {20 - dx * (1 - 1e-9), 0, 0.5}, 1e-9);
+  ASSERT_FALSE(short_of.empty());
+  EXPECT_NEAR(short_of[0].weight[0], 2.25, 1e-15);
+}
+
+TEST(Refraction, AHugeUniformSlabChangesNothing) {
+  // An infinite uniform source seen through an infinite slab: the contraction moves the
+  // source in depth only, which does not change what an infinite plane gives, and the
+  // radiance factors of the two crossings cancel. Finite here (10^4 wide, 1 to 3 high), to the
+  // deficit of the finite source.
+  SceneBuilder b;
+  const double half = 1e4;
+  b.rectangle(-half, half, -half, half, 3, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+  b.box({-half, -half, 1}, {half, half, 2}, b.material("glass", Refraction{Rgb::Constant(1.5)}));
+  const Scene& scene = b.scene();
+  const LocalPassResult r = gather(scene, Vec3::Zero());
+  const double deficit = 1 - test::howell_rectangle(-half, half, -half, half, 3);
+  EXPECT_EQ(r.irradiance, Rgb::Zero()) << "the slab hides the lamp from straight lines";
+  EXPECT_NEAR(r.refracted[0], 1, 2 * deficit) << "deficit " << deficit;
+  EXPECT_GT(r.refracted_images, 0);
+}
+
+TEST(Refraction, ChainsGoInAndOutOfABox) {
+  // From outside: in at one face, out at another of the same box (each face lies partly
+  // behind each other one: 6 x 5 = 30 ordered pairs); from inside: out at any face (6).
+  const Scene scene = lamp_over_box(refracting(Rgb::Constant(1.5)));
+  const std::vector<RefractingFacet> facets = refracting_facets(scene);
+  ASSERT_EQ(facets.size(), 6u);
+  int from_outside = 0, from_inside = 0;
+  for (const RefractionChain& c : refraction_chains(facets, 2, 1e-9)) {
+    (c.from_inside ? from_inside : from_outside)++;
+    EXPECT_EQ(c.facets.size(), c.from_inside ? 1u : 2u);
+  }
+  EXPECT_EQ(from_outside, 30);
+  EXPECT_EQ(from_inside, 6);
+  EXPECT_TRUE(refraction_chains(facets, 0, 1e-9).empty());
+}
+
+}  // namespace
+}  // namespace rad
