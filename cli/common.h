@@ -7,6 +7,7 @@
 #include <mutex>
 #include <string>
 
+#include "localpass/local_pass.h"
 #include "radiosity/solution.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -17,6 +18,10 @@ namespace rad::cli {
 /// --samples (Monte Carlo rays per `unit`), with their defaults shown.
 void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help);
 void add_samples_option(CLI::App* sub, int* samples, const std::string& unit);
+
+/// --refraction-tolerance and --refraction-pieces, the refraction heuristic's accuracy knob
+/// (LocalPassSettings; 000 §4): stored into `settings`.
+void add_refraction_options(CLI::App* sub, LocalPassSettings* settings);
 
 /// -s,--solution (a .vtp from `radiosity solve`); `detail` is appended to the help text.
 CLI::Option* add_solution_option(CLI::App* sub, std::string* solution,

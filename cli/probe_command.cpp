@@ -45,6 +45,8 @@ struct ProbeOptions {
   double target_error = 0;  ///< pathtrace: batches until this relative standard error
   std::string output;       ///< empty: stdout
   int threads = 0;
+  LocalPassSettings settings;             ///< The refraction knob
+  bool no_interface_reflections = false;  ///< pathtrace: the heuristic's model of interfaces
 };
 
 /// The batches of a reference: at most this many of --samples paths each.
@@ -94,7 +96,7 @@ void run_probe(const ProbeOptions& o) {
   if (o.method == "pathtrace") {
     if (!o.solution.empty())
       throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
-    path_tracer.emplace(scene);
+    path_tracer.emplace(scene, !o.no_interface_reflections);
     standard_error.assign(points.size(), Rgb::Zero());
     gather = [&](size_t i) {
       const PathTraceEstimate e =
@@ -122,7 +124,7 @@ void run_probe(const ProbeOptions& o) {
         bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
       };
     } else {
-      pass.emplace(scene, faces_from_solution(scene, solution), method);
+      pass.emplace(scene, faces_from_solution(scene, solution), method, o.settings);
       gather = [&](size_t i) {
         const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
         irradiance[i] = r.irradiance;
@@ -138,7 +140,7 @@ void run_probe(const ProbeOptions& o) {
     for (const Polygon& p : scene.polygons)
       mirrors = mirrors || scene.materials[p.material].is_mirror();
     if ((mirrors && scene.mirror_depth > 0) || refracts) {
-      pass.emplace(scene, faces_from_polygons(scene), method);
+      pass.emplace(scene, faces_from_polygons(scene), method, o.settings);
       gather = [&](size_t i) {
         const LocalPassResult r = pass->gather(points[i].x, points[i].n, 0);
         irradiance[i] = r.irradiance;
@@ -228,6 +230,11 @@ void add_probe_command(CLI::App& app, Run& run) {
       ->check(CLI::IsMember(probe_method_names()))
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");
+  add_refraction_options(sub, &o->settings);
+  sub->add_flag("--no-interface-reflections", o->no_interface_reflections,
+                "pathtrace: drop the light refracting interfaces reflect (Fresnel, total internal "
+                "reflection), the model of the local pass's refraction heuristic (paper 000 "
+                "section 4): its reference, where the default is the physics'");
   add_tolerance_option(
       sub, &o->tolerance,
       "With --solution: stop once the certified error bound is at most this fraction of the "

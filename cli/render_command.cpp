@@ -37,6 +37,7 @@ std::vector<std::string> render_method_names() {
 struct RenderOptions {
   std::string scene;
   bool no_mirror_culling = false;
+  LocalPassSettings settings;  ///< The refraction knob
   std::string method = "hemisphere";
   std::string solution;  ///< .vtp from `solve`, for methods that need one
   double tolerance = 0.1;
@@ -174,7 +175,7 @@ void run_render(const RenderOptions& o) {
         result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces),
                                     o.samples, progress);
       } else {
-        LocalPassSettings settings;
+        LocalPassSettings settings = o.settings;
         settings.mirror_culling = !o.no_mirror_culling;
         pass.emplace(scene, faces, *method, settings);
         result = render_local_pass(scene, caster, camera, *pass, o.tolerance, progress);
@@ -282,6 +283,7 @@ void add_render_command(CLI::App& app, Run& run) {
          "bounce sampled (no solution)")
       ->check(CLI::IsMember(render_method_names()))
       ->capture_default_str();
+  add_refraction_options(sub, &o->settings);
   add_tolerance_option(
       sub, &o->tolerance,
       "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "

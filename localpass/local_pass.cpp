@@ -50,6 +50,9 @@ struct LocalPass::Refracting {
   std::vector<RefractingFacet> facets;
   std::vector<RefractionChain> chains;
   Method method;
+  double tolerance;
+  int max_pieces;
+  bool culling;
 };
 
 LocalPass::~LocalPass() = default;
@@ -94,6 +97,9 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
     if (!r->chains.empty()) {
       r->scene = scene;
       r->method = method;
+      r->tolerance = settings.refraction_tolerance;
+      r->max_pieces = std::max(1, settings.refraction_max_pieces);
+      r->culling = settings.refraction_culling;
       refracting_ = std::move(r);
     }
   }
@@ -105,13 +111,33 @@ void LocalPass::add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& res
     // x on the side the chain starts from: in front of its first facet, or behind it.
     const double h = r.facets[chain.facets.front()].height(x);
     if (!(chain.from_inside ? h < -in_plane_ : h > in_plane_)) continue;
-    for (const RefractedImage& image :
-         refracted_images(r.scene, faces_, r.facets, chain, x, in_plane_)) {
-      const auto gatherer =
-          make_exact_gatherer(r.method, image.unfolded.scene, image.unfolded.faces);
-      result.refracted += image.weight.cwiseProduct(exact_irradiance(*gatherer, x, n));
-      ++result.refracted_images;
-    }
+    // Each facet in pieces (the accuracy knob), seen from where the path reaches it; a path
+    // through pieces whose images miss each other is skipped (the beams).
+    const int k = static_cast<int>(chain.facets.size());
+    std::vector<std::vector<RefractingFacet>> pieces(k);
+    RefractionPath path{{}, chain.from_inside};
+    const auto extend = [&](const auto& self, int j, const Vec3& viewpoint, bool entering) -> void {
+      pieces[j] =
+          facet_pieces(r.facets[chain.facets[j]], viewpoint, entering, r.tolerance, r.max_pieces);
+      for (const RefractingFacet& piece : pieces[j]) {
+        path.facets.push_back(&piece);
+        if (!r.culling || may_pass(path, x)) {
+          if (j + 1 < k) {
+            self(self, j + 1, piece.centroid, !entering);
+          } else {
+            for (const RefractedImage& image :
+                 refracted_images(r.scene, faces_, path, x, in_plane_)) {
+              const auto gatherer =
+                  make_exact_gatherer(r.method, image.unfolded.scene, image.unfolded.faces);
+              result.refracted += image.weight.cwiseProduct(exact_irradiance(*gatherer, x, n));
+              ++result.refracted_images;
+            }
+          }
+        }
+        path.facets.pop_back();
+      }
+    };
+    extend(extend, 0, x, !chain.from_inside);
   }
 }
 

@@ -42,6 +42,7 @@
 /// with the bound (U - L) / 2 and stops when max_c bound_c <= tolerance * max_c value_c, so
 /// the relative error (against the brightest channel) is at most the tolerance. At tolerance 0
 /// every cluster is refined to its faces: every term is exact and the bound is 0.
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -69,6 +70,15 @@ struct LocalPassSettings {
   /// interfaces are opaque), 2 sees through a convex block. Unset: the scene's
   /// (Scene::refraction_depth).
   std::optional<int> refraction_depth;
+  /// The refraction heuristic's accuracy knob (localpass/refraction_images.h, facet_pieces):
+  /// facets are split until the depth ratio varies by at most this much over each piece, as
+  /// seen from where the path reaches it. Infinite: one angle per facet, the paper's method.
+  double refraction_tolerance = std::numeric_limits<double>::infinity();
+  /// At most this many pieces per facet and viewpoint.
+  int refraction_max_pieces = 64;
+  /// Skip paths whose later facets' images lie outside the earlier ones' (000 §5's beams); false:
+  /// every path (the same values).
+  bool refraction_culling = true;
   /// Culling beams (000 §5): skip a mirror at points that cannot see anything radiating
   /// through it. false: every mirror at every point in front of it (the same values).
   bool mirror_culling = true;

@@ -12,46 +12,6 @@ namespace {
 /// The front half-space of a mirror piece: where it reflects.
 HalfSpace front_of(const MirrorPiece& m) { return {m.normal, m.offset}; }
 
-/// Convex hull of 2D points (Andrew's monotone chain), counter-clockwise.
-std::vector<Vec2> convex_hull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
-  });
-  const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-  };
-  std::vector<Vec2> hull(2 * points.size());
-  size_t k = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (size_t i = points.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0) --k;
-    hull[k++] = points[i - 1];
-  }
-  hull.resize(k > 1 ? k - 1 : k);
-  return hull;
-}
-
-/// True when some edge normal of either convex polygon separates them by more than `margin`.
-bool separated(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double margin) {
-  const auto separates = [&](const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
-    for (size_t i = 0; i < p.size(); ++i) {
-      const Vec2 e = p[(i + 1) % p.size()] - p[i];
-      const Vec2 outward(e.y(), -e.x());  // p counter-clockwise: its outside is to the right
-      const double length = outward.norm();
-      if (!(length > 0)) continue;
-      const double edge = outward.dot(p[i]) / length;
-      double nearest = std::numeric_limits<double>::infinity();
-      for (const Vec2& v : q) nearest = std::min(nearest, outward.dot(v) / length);
-      if (nearest > edge + margin) return true;
-    }
-    return false;
-  };
-  return separates(a, b) || separates(b, a);
-}
-
 }  // namespace
 
 UnfoldedScene unfold(const Scene& scene, const std::vector<EmittingFace>& faces,
@@ -114,20 +74,11 @@ Eigen::AlignedBox3d sources_in_front(const std::vector<EmittingFace>& faces,
 bool may_see_through(const MirrorPiece& mirror, const Vec3& x_mirrored,
                      const Eigen::AlignedBox3d& sources) {
   if (sources.isEmpty()) return false;
-  const double hx = mirror.height(x_mirrored);
-  if (!(hx < 0)) return true;  // not behind the plane: no claim
-  const PlaneFrame frame(mirror.outline.front(), mirror.normal);
-  std::vector<Vec2> projected;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 p = sources.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner));
-    const double hp = mirror.height(p);
-    if (!(hp > 0)) return true;  // the box reaches the plane: every direction may pass
-    projected.push_back(frame.to_2d(x_mirrored + (hx / (hx - hp)) * (p - x_mirrored)));
-  }
-  std::vector<Vec2> outline;
-  for (const Vec3& v : mirror.outline) outline.push_back(frame.to_2d(v));
-  const double margin = 1e-9 * (extent(mirror.outline) + (sources.max() - sources.min()).norm());
-  return !separated(convex_hull(projected), outline, margin);
+  if (!(mirror.height(x_mirrored) < 0)) return true;  // not behind the plane: no claim
+  std::vector<Vec3> corners;
+  for (int corner = 0; corner < 8; ++corner)
+    corners.push_back(sources.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  return may_show_through(mirror.outline, mirror.normal, x_mirrored, corners);
 }
 
 }  // namespace rad

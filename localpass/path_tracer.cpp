@@ -20,8 +20,12 @@ Vec3 cosine_direction(const Vec3& n, std::mt19937_64& rng) {
 
 }  // namespace
 
-PathTracer::PathTracer(const Scene& scene)
-    : scene_(scene), caster_(scene), offset_(scene.tolerance().ray_offset) {
+PathTracer::PathTracer(const Scene& scene, bool interface_reflections)
+    : scene_(scene),
+      caster_(scene),
+      offset_(scene.tolerance().ray_offset),
+      limits_(RayCaster::limits_of(scene)) {
+  limits_.interface_reflections = interface_reflections;
   emitter_of_.assign(scene.polygons.size(), -1);
   for (const EmittingFace& f : faces_from_polygons(scene)) {
     if (f.exitance == Rgb::Zero()) continue;
@@ -100,7 +104,7 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
     // neighbour's); what lies that near the point is passed (RayCaster::follow), as the exact
     // gatherers see polygons through x edge-on.
     caster_.follow(
-        {p + offset_ * normal - 0.5 * offset_ * d, d}, RayCaster::limits_of(scene_), offset_,
+        {p + offset_ * normal - 0.5 * offset_ * d, d}, limits_, offset_,
         [&](const Hit& hit, const Rgb& weight, int reflections) {
           if (!hit.front_facing) return;
           const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];

@@ -34,8 +34,10 @@ struct PathTraceEstimate {
 
 class PathTracer {
  public:
-  /// The scene must outlive the tracer.
-  explicit PathTracer(const Scene& scene);
+  /// The scene must outlive the tracer. `interface_reflections` false drops the light that
+  /// refracting interfaces reflect (Fresnel, total internal reflection), as the heuristic of
+  /// 000 §4 does: the reference of that model, where true is the reference of the physics.
+  explicit PathTracer(const Scene& scene, bool interface_reflections = true);
 
   /// H(x) at unit normal n from `paths` paths, seeded by `seed` (e.g. the point's index): the
   /// same seed gives the same estimate on any thread. Thread-safe.
@@ -57,7 +59,8 @@ class PathTracer {
 
   const Scene& scene_;
   RayCaster caster_;
-  double offset_ = 0;  ///< Rays start this far along the normal, off the surface
+  double offset_ = 0;        ///< Rays start this far along the normal, off the surface
+  RayCaster::Bends limits_;  ///< The scene's, and whether interfaces reflect
   std::vector<Emitter> emitters_;
   std::vector<int> emitter_of_;  ///< Per polygon: its index in emitters_, or -1
 };

@@ -1,9 +1,12 @@
 #include "localpass/refraction_images.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "geometry/refraction.h"
+#include "scene/polygon.h"
 #include "scene/polygon_faces.h"
 
 namespace rad {
@@ -15,6 +18,29 @@ bool partly_on_side(const RefractingFacet& a, const RefractingFacet& b, int sign
     if (sign * b.height(v) > in_plane) return true;
   }
   return false;
+}
+
+/// The point of the convex `facet` nearest to p's projection onto its plane.
+Vec3 nearest_point(const RefractingFacet& facet, const Vec3& p) {
+  const Vec3 foot = p - facet.height(p) * facet.normal;
+  const std::vector<Vec3>& o = facet.outline;
+  bool inside = true;
+  for (size_t i = 0; i < o.size() && inside; ++i) {
+    const Vec3& a = o[i];
+    const Vec3& b = o[(i + 1) % o.size()];
+    inside = (b - a).cross(foot - a).dot(facet.normal) >= 0;
+  }
+  if (inside) return foot;
+  Vec3 best = o.front();
+  for (size_t i = 0; i < o.size(); ++i) {
+    const Vec3& a = o[i];
+    const Vec3 edge = o[(i + 1) % o.size()] - a;
+    const double t =
+        std::clamp(edge.dot(foot - a) / std::max(edge.squaredNorm(), 1e-300), 0.0, 1.0);
+    const Vec3 q = a + t * edge;
+    if ((q - foot).squaredNorm() < (best - foot).squaredNorm()) best = q;
+  }
+  return best;
 }
 
 /// The half-space of a leg bounded by `f`: behind it inside the medium, in front outside.
@@ -75,81 +101,224 @@ std::vector<RefractionChain> refraction_chains(const std::vector<RefractingFacet
   return chains;
 }
 
+namespace {
+
+/// Along the centroid path x -> c_1 -> ... -> c_k: the depth ratio at each facet per channel
+/// (eqs. 7-8; 0 past the critical angle), and the weight of the path per channel.
+struct PathOptics {
+  std::vector<std::array<double, 3>> ratio;
+  Rgb weight = Rgb::Ones();
+  bool seen = true;  ///< false when a facet is seen edge-on
+};
+
+PathOptics optics_of(const RefractionPath& path, const Vec3& x) {
+  PathOptics o;
+  const int k = static_cast<int>(path.facets.size());
+  o.ratio.resize(k);
+  Rgb optical_depth = Rgb::Zero();
+  Vec3 from = x;
+  bool inside = path.from_inside;
+  for (int j = 0; j < k; ++j) {
+    const RefractingFacet& f = *path.facets[j];
+    const Vec3 leg = f.centroid - from;
+    const double length = leg.norm();
+    const double cos_near = length > 0 ? std::abs(leg.dot(f.normal)) / length : 0;
+    if (!(cos_near > 1e-12)) {  // edge-on: the facet shows nothing
+      o.seen = false;
+      o.weight = Rgb::Zero();
+      return o;
+    }
+    const Refraction& r = f.refraction;
+    if (inside) optical_depth += length * r.attenuation;
+    for (int c = 0; c < 3; ++c) {
+      const double eta = inside ? 1 / r.ior[c] : r.ior[c];
+      const std::optional<double> ratio = depth_ratio(cos_near, eta);
+      o.ratio[j][c] = ratio.value_or(0);
+      if (!ratio) {
+        o.weight[c] = 0;  // total internal reflection in this channel
+        continue;
+      }
+      const double passed = r.fresnel ? fresnel_transmission(cos_near, eta) : r.transmittance[c];
+      o.weight[c] *= passed / (eta * eta);
+    }
+    inside = !inside;
+    from = f.centroid;
+  }
+  o.weight = o.weight.cwiseProduct(Rgb((-optical_depth).array().exp()));
+  return o;
+}
+
+/// The legs of `path` with the ratios of channel c: leg j lies beyond f_j and before f_(j+1),
+/// inside the medium or out, mapped by M_j = M_(j-1) T_j (eq. 9 at f_j, its plane fixed).
+std::vector<Leg> legs_of(const RefractionPath& path, const PathOptics& o, int c) {
+  const int k = static_cast<int>(path.facets.size());
+  std::vector<Leg> legs(k + 1);
+  bool inside = path.from_inside;
+  for (int j = 0; j <= k; ++j) {
+    if (j >= 1) {
+      const RefractingFacet& f = *path.facets[j - 1];
+      legs[j].bounds.push_back(side_of(f, inside));
+      const DepthContraction t{f.centroid, f.normal, o.ratio[j - 1][c]};
+      legs[j].linear = legs[j - 1].linear * t.linear();
+      legs[j].translation = legs[j - 1].linear * t.translation() + legs[j - 1].translation;
+    }
+    if (j < k) legs[j].bounds.push_back(side_of(*path.facets[j], inside));
+    inside = !inside;
+  }
+  return legs;
+}
+
+/// The channels that share channel c's ratios at every facet (and carry light), as a mask.
+Rgb same_ratios(const PathOptics& o, int c) {
+  Rgb mask = Rgb::Zero();
+  for (int other = 0; other < 3; ++other) {
+    bool same = o.weight[other] > 0;
+    for (size_t j = 0; j < o.ratio.size() && same; ++j) same = o.ratio[j][other] == o.ratio[j][c];
+    if (same) mask[other] = 1;
+  }
+  return mask;
+}
+
+}  // namespace
+
+std::vector<RefractedImage> refracted_images(const Scene& scene,
+                                             const std::vector<EmittingFace>& faces,
+                                             const RefractionPath& path, const Vec3& x,
+                                             double in_plane) {
+  const PathOptics o = optics_of(path, x);
+  std::vector<RefractedImage> images;
+  if (!o.seen) return images;
+  std::vector<Aperture> apertures;
+  for (const RefractingFacet* f : path.facets)
+    apertures.push_back({f->outline, f->normal, f->polygon});
+  Rgb done = Rgb::Zero();
+  for (int c = 0; c < 3; ++c) {
+    if (done[c] > 0 || !(o.weight[c] > 0)) continue;
+    const Rgb mask = same_ratios(o, c);
+    done += mask;
+    RefractedImage image;
+    image.weight = o.weight.cwiseProduct(mask);
+    image.unfolded = unfold_legs(scene, faces, apertures, legs_of(path, o, c),
+                                 Eigen::Matrix3d::Identity(), Vec3::Zero(), in_plane, x);
+    images.push_back(std::move(image));
+  }
+  return images;
+}
+
 std::vector<RefractedImage> refracted_images(const Scene& scene,
                                              const std::vector<EmittingFace>& faces,
                                              const std::vector<RefractingFacet>& facets,
                                              const RefractionChain& chain, const Vec3& x,
                                              double in_plane) {
-  const int k = static_cast<int>(chain.facets.size());
-  // Along the centroid path x -> c_1 -> ... -> c_k: the angle at each facet (eqs. 7-8), what
-  // each crossing passes, and the length inside.
-  std::vector<std::array<double, 3>> ratio(k);
-  Rgb weight = Rgb::Ones(), optical_depth = Rgb::Zero();
-  Vec3 from = x;
-  bool inside = chain.from_inside;
-  for (int j = 0; j < k; ++j) {
-    const RefractingFacet& f = facets[chain.facets[j]];
-    const Vec3 leg = f.centroid - from;
-    const double length = leg.norm();
-    const double cos_near = length > 0 ? std::abs(leg.dot(f.normal)) / length : 0;
-    if (!(cos_near > 1e-12)) return {};  // edge-on: the facet shows nothing
-    const Refraction& r = f.refraction;
-    if (inside) optical_depth += length * r.attenuation;
-    for (int c = 0; c < 3; ++c) {
-      const double eta = inside ? 1 / r.ior[c] : r.ior[c];
-      const std::optional<double> depth_ratio_c = depth_ratio(cos_near, eta);
-      if (!depth_ratio_c) {
-        weight[c] = 0;  // total internal reflection in this channel
-        ratio[j][c] = 0;
-        continue;
-      }
-      ratio[j][c] = *depth_ratio_c;
-      const double passed = r.fresnel ? fresnel_transmission(cos_near, eta) : r.transmittance[c];
-      weight[c] *= passed / (eta * eta);
-    }
-    inside = !inside;
-    from = f.centroid;
-  }
-  weight = weight.cwiseProduct(Rgb((-optical_depth).array().exp()));
+  RefractionPath path{{}, chain.from_inside};
+  for (const int f : chain.facets) path.facets.push_back(&facets[f]);
+  return refracted_images(scene, faces, path, x, in_plane);
+}
 
-  std::vector<RefractedImage> images;
-  std::array<bool, 3> done{};
+bool may_pass(const RefractionPath& path, const Vec3& x) {
+  const int k = static_cast<int>(path.facets.size());
+  if (k < 2) return true;
+  const PathOptics o = optics_of(path, x);
+  if (!o.seen) return false;
+  // Through the last facet's image (mapped by the leg before it), each earlier facet's image
+  // (mapped by the leg after it: the two maps agree on its plane) must be seen.
+  Rgb done = Rgb::Zero();
   for (int c = 0; c < 3; ++c) {
-    if (done[c] || !(weight[c] > 0)) continue;
-    // The channels with the same ratios at every facet share an image.
-    RefractedImage image;
-    for (int other = c; other < 3; ++other) {
-      bool same = weight[other] > 0;
-      for (int j = 0; j < k && same; ++j) same = ratio[j][other] == ratio[j][c];
-      if (!same) continue;
-      done[other] = true;
-      image.weight[other] = weight[other];
+    if (done[c] > 0 || !(o.weight[c] > 0)) continue;
+    done += same_ratios(o, c);
+    const std::vector<Leg> legs = legs_of(path, o, c);
+    const auto image = [&](int j, const Leg& leg) {
+      std::vector<Vec3> out;
+      for (const Vec3& v : path.facets[j]->outline) out.push_back(leg.linear * v + leg.translation);
+      return out;
+    };
+    const std::vector<Vec3> last = image(k - 1, legs[k - 1]);
+    bool passes = true;
+    for (int j = 0; j < k - 1 && passes; ++j) {
+      const std::vector<Vec3> aperture = image(j, legs[j + 1]);
+      const Vec3 normal = (aperture[1] - aperture[0]).cross(aperture[2] - aperture[0]).normalized();
+      passes = may_show_through(aperture, normal, x, last);
     }
-    // Leg j lies beyond f_j and before f_(j+1), inside the medium or out; mapped by
-    // M_j = M_(j-1) T_j (eq. 9 at f_j, the plane of f_j fixed).
-    std::vector<Leg> legs(k + 1);
-    std::vector<Aperture> apertures;
-    bool leg_inside = chain.from_inside;
-    for (int j = 0; j <= k; ++j) {
-      if (j >= 1) {
-        const RefractingFacet& f = facets[chain.facets[j - 1]];
-        legs[j].bounds.push_back(side_of(f, leg_inside));
-        const DepthContraction t{f.centroid, f.normal, ratio[j - 1][c]};
-        legs[j].linear = legs[j - 1].linear * t.linear();
-        legs[j].translation = legs[j - 1].linear * t.translation() + legs[j - 1].translation;
-      }
-      if (j < k) {
-        const RefractingFacet& f = facets[chain.facets[j]];
-        legs[j].bounds.push_back(side_of(f, leg_inside));
-        apertures.push_back({f.outline, f.normal, f.polygon});
-      }
-      leg_inside = !leg_inside;
-    }
-    image.unfolded = unfold_legs(scene, faces, apertures, legs, Eigen::Matrix3d::Identity(),
-                                 Vec3::Zero(), in_plane, x);
-    images.push_back(std::move(image));
+    if (passes) return true;
   }
-  return images;
+  return false;
+}
+
+std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Vec3& viewpoint,
+                                          bool entering, double tolerance, int max_pieces) {
+  // The spread of the depth ratio over a piece, seen from the viewpoint, in its worst channel.
+  const auto spread = [&](const RefractingFacet& piece) {
+    const auto ratio = [&](const Vec3& p, int c) {
+      const Vec3 leg = p - viewpoint;
+      const double length = leg.norm();
+      const double cos_near = length > 0 ? std::abs(leg.dot(piece.normal)) / length : 0;
+      const double n = piece.refraction.ior[c];
+      return depth_ratio(cos_near, entering ? n : 1 / n);
+    };
+    // The angle is smallest (the ratio's argument cos largest) at the point of the piece
+    // nearest the viewpoint's foot on the plane: with the vertices it brackets the range, and
+    // it finds a window of light inside a piece whose corners are all past the critical angle.
+    std::vector<Vec3> samples = piece.outline;
+    samples.push_back(nearest_point(piece, viewpoint));
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const std::optional<double> middle = ratio(piece.centroid, c);
+      for (const Vec3& v : samples) {
+        const std::optional<double> corner = ratio(v, c);
+        if (!middle && !corner) continue;
+        if (!middle || !corner || !(*middle > 0)) return std::numeric_limits<double>::infinity();
+        worst = std::max(worst, std::abs(*corner - *middle) / *middle);
+      }
+    }
+    return worst;
+  };
+  // The widest spread first; among equal spreads (those across the critical angle are all
+  // infinite) the largest piece, so that the budget goes around the whole critical curve
+  // rather than into one point of it. Pieces smaller than 1e-6 of the facet stay whole.
+  struct Piece {
+    double spread, size;
+    RefractingFacet facet;
+  };
+  const double smallest = 1e-6 * extent(facet.outline);
+  std::vector<Piece> pieces{{spread(facet), extent(facet.outline), facet}};
+  while (static_cast<int>(pieces.size()) < max_pieces) {
+    auto widest =
+        std::max_element(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) {
+          return a.spread != b.spread ? a.spread < b.spread : a.size < b.size;
+        });
+    if (!(widest->spread > tolerance) || !(widest->size > smallest)) break;
+    const RefractingFacet whole = widest->facet;
+    // Across the longest extent, through the centroid.
+    Vec3 across = Vec3::Zero();
+    for (const Vec3& a : whole.outline) {
+      for (const Vec3& b : whole.outline) {
+        if ((b - a).squaredNorm() > across.squaredNorm()) across = b - a;
+      }
+    }
+    across.normalize();
+    EmittingFace outline;
+    outline.vertices = whole.outline;
+    outline.on_boundary.assign(whole.outline.size(), true);
+    outline.normal = whole.normal;
+    const double offset = across.dot(whole.centroid);
+    std::vector<RefractingFacet> halves;
+    for (const HalfSpace& side : {HalfSpace{across, offset}, HalfSpace{-across, -offset}}) {
+      const std::optional<EmittingFace> half = clipped_to(outline, {side}, 0);
+      if (!half) continue;
+      RefractingFacet piece = whole;
+      piece.outline = half->vertices;
+      piece.centroid = Vec3::Zero();
+      for (const Vec3& v : piece.outline) piece.centroid += v;
+      piece.centroid /= static_cast<double>(piece.outline.size());
+      halves.push_back(std::move(piece));
+    }
+    if (halves.size() < 2) break;  // nothing left to split
+    *widest = {spread(halves[0]), extent(halves[0].outline), halves[0]};
+    pieces.push_back({spread(halves[1]), extent(halves[1].outline), halves[1]});
+  }
+  std::vector<RefractingFacet> out;
+  for (Piece& piece : pieces) out.push_back(std::move(piece.facet));
+  return out;
 }
 
 }  // namespace rad

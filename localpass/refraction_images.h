@@ -67,13 +67,40 @@ struct RefractedImage {
   Rgb weight = Rgb::Zero();
 };
 
-/// The images of `chain` at x (000 eqs. 7-9 at the centroid angles): one for all channels, or
+/// The facets of one path, in order (whole facets or pieces of them: facet_pieces), crossed
+/// from x, out first when `from_inside`.
+struct RefractionPath {
+  std::vector<const RefractingFacet*> facets;
+  bool from_inside = false;
+};
+
+/// The images of `path` at x (000 eqs. 7-9 at the centroid angles): one for all channels, or
 /// one per group of channels with the same indices; none in a channel past a critical angle,
-/// or when x sees a facet of the chain edge-on. `faces` are what radiates and hides.
+/// or when a facet of the path is seen edge-on. `faces` are what radiates and hides.
+std::vector<RefractedImage> refracted_images(const Scene& scene,
+                                             const std::vector<EmittingFace>& faces,
+                                             const RefractionPath& path, const Vec3& x,
+                                             double in_plane);
+/// The same for a chain of whole facets.
 std::vector<RefractedImage> refracted_images(const Scene& scene,
                                              const std::vector<EmittingFace>& faces,
                                              const std::vector<RefractingFacet>& facets,
                                              const RefractionChain& chain, const Vec3& x,
                                              double in_plane);
+
+/// Culling beams (000 §5) for a path under construction: false when the image of its last
+/// facet, seen from x, lies outside the image of an earlier one in every channel, so that no
+/// line from x passes through them all. Conservative. Cost O(#facets^2) per distinct index.
+bool may_pass(const RefractionPath& path, const Vec3& x);
+
+/// Beyond the paper, the accuracy knob: the heuristic takes one angle per facet, which is
+/// right where the depth ratio k hardly varies over the facet as seen from `viewpoint` (x, or
+/// the previous facet's centroid). Splits `facet` in two (through its centroid, across its
+/// longest extent), widest spread first, until over each piece max |k(v) - k(c)| / k(c) <=
+/// `tolerance` at its vertices v in every channel (a piece partly past the critical angle
+/// counts as infinitely spread) or there are `max_pieces`. Each piece keeps the facet's plane,
+/// material and object. An infinite tolerance keeps the facet whole (the paper's method).
+std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Vec3& viewpoint,
+                                          bool entering, double tolerance, int max_pieces);
 
 }  // namespace rad

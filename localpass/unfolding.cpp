@@ -46,7 +46,67 @@ Polygon polygon_of(const EmittingFace& face, int material, const Polygon& proven
   return p;
 }
 
+/// Convex hull of 2D points (Andrew's monotone chain), counter-clockwise.
+std::vector<Vec2> convex_hull(std::vector<Vec2> points) {
+  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
+  });
+  const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Vec2> hull(2 * points.size());
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0) --k;
+    hull[k++] = points[i - 1];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  return hull;
+}
+
+/// True when some edge normal of either convex polygon separates them by more than `margin`.
+bool separated(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double margin) {
+  const auto separates = [&](const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const Vec2 e = p[(i + 1) % p.size()] - p[i];
+      const Vec2 outward(e.y(), -e.x());  // p counter-clockwise: its outside is to the right
+      const double length = outward.norm();
+      if (!(length > 0)) continue;
+      const double edge = outward.dot(p[i]) / length;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Vec2& v : q) nearest = std::min(nearest, outward.dot(v) / length);
+      if (nearest > edge + margin) return true;
+    }
+    return false;
+  };
+  return separates(a, b) || separates(b, a);
+}
+
 }  // namespace
+
+bool may_show_through(const std::vector<Vec3>& outline, const Vec3& normal, const Vec3& x,
+                      const std::vector<Vec3>& points) {
+  const double offset = normal.dot(outline.front());
+  const double hx = normal.dot(x) - offset;
+  if (hx == 0 || points.empty()) return !points.empty();
+  const PlaneFrame frame(outline.front(), normal);
+  std::vector<Vec2> projected;
+  for (const Vec3& p : points) {
+    const double hp = normal.dot(p) - offset;
+    if (!(hp * hx < 0)) return true;  // not beyond the plane: every direction may pass
+    projected.push_back(frame.to_2d(x + (hx / (hx - hp)) * (p - x)));
+  }
+  std::vector<Vec2> aperture;
+  for (const Vec3& v : outline) aperture.push_back(frame.to_2d(v));
+  if (signed_area_2d(aperture) < 0) std::reverse(aperture.begin(), aperture.end());
+  double reach = extent(outline);
+  for (const Vec3& p : points) reach = std::max(reach, (p - x).norm());
+  return !separated(convex_hull(projected), aperture, 1e-9 * reach);
+}
 
 std::optional<EmittingFace> clipped_to(const EmittingFace& face,
                                        const std::vector<HalfSpace>& bounds, double in_plane) {

@@ -72,6 +72,14 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
                           const Eigen::Matrix3d& receiver_linear, const Vec3& receiver_translation,
                           double in_plane, const std::optional<Vec3>& crossing_from = {});
 
+/// Culling beams (000 §5): false when no segment from x to a point of the convex hull of
+/// `points` (all beyond the plane of `outline`, seen from x) passes through the convex
+/// `outline` (its unit normal `normal`, either orientation), so that nothing there is seen
+/// through it. Conservative: true whenever a point is not strictly beyond the plane; a margin
+/// of 1e-9 of the reach. Cost O(#points log #points + #outline).
+bool may_show_through(const std::vector<Vec3>& outline, const Vec3& normal, const Vec3& x,
+                      const std::vector<Vec3>& points);
+
 /// `face` clipped to every half-space of `bounds` (|height| <= in_plane counts as on the plane):
 /// nothing when no part of it lies strictly inside, or all of it lies in a plane. Each new edge
 /// along a plane is marked as a boundary.

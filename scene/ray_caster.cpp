@@ -236,7 +236,7 @@ void RayCaster::follow(const Ray& ray, Bends limits, double gap,
           branches.push_back(
               {{hit->point, *t}, b.weight.cwiseProduct(passed) / (eta * eta), gap, next, beyond});
         }
-        if (reflected != Rgb::Zero()) {
+        if (reflected != Rgb::Zero() && limits.interface_reflections) {
           // Back into the medium the ray came through.
           branches.push_back({{hit->point, reflect(d, hit->normal)},
                               b.weight.cwiseProduct(reflected),

@@ -60,6 +60,9 @@ class RayCaster {
   struct Bends {
     int reflections = 0;  ///< Off the fronts of plane mirrors (000 §3)
     int refractions = 0;  ///< Crossings of refracting interfaces, and their reflections (§4)
+    /// As a limit: false follows only the refracted rays at interfaces, dropping what they
+    /// reflect (Fresnel, total internal reflection): the model of 000 §4's heuristic.
+    bool interface_reflections = true;
   };
   /// The scene's limits: mirror_depth and refraction_depth.
   static Bends limits_of(const Scene& scene) {

@@ -83,6 +83,30 @@ TEST(Cli, InfoReportsTheCornellBox) {
   EXPECT_EQ(info["camera"]["width"], 512);
 }
 
+TEST(Cli, StrictTurnsAnOpenRefractingObjectIntoAnError) {
+  // A glass box missing a face: a warning naming it; with --strict (before or after the
+  // subcommand), an error, exit 1, one line.
+  const std::string scene = quoted(kData / "open_glass.json");
+  const Result warned = run("info " + scene);
+  ASSERT_EQ(warned.exit_code, 0) << warned.err;
+  EXPECT_NE(warned.err.find("warning: "), std::string::npos) << warned.err;
+  EXPECT_NE(warned.err.find("\"open box\": refracting but not closed"), std::string::npos)
+      << warned.err;
+  std::string before = "--strict info ", after = "info ";
+  before += scene;
+  after += scene;
+  after += " --strict";
+  const std::vector<std::string> commands{before, after};
+  for (const std::string& command : commands) {
+    const Result r = run(command);
+    EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("radiosity: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("refracting but not closed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--strict"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 TEST(Cli, RenderAlbedoWritesExrAndPng) {
   const fs::path dir = scratch();
   const Result r =

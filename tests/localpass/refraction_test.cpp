@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "localpass/local_pass.h"
 #include "localpass/refraction_images.h"
+#include "scene/polygon.h"
 #include "scene/polygon_faces.h"
 #include "tests/closed_forms.h"
 #include "tests/scene_builder.h"
@@ -158,6 +160,85 @@ TEST(Refraction, ChainsGoInAndOutOfABox) {
   EXPECT_EQ(from_outside, 30);
   EXPECT_EQ(from_inside, 6);
   EXPECT_TRUE(refraction_chains(facets, 0, 1e-9).empty());
+}
+
+}  // namespace
+}  // namespace rad
+
+namespace rad {
+namespace {
+
+/// A receiver at the bottom of water (index 1.33, [-half, half]^2 x [-1, 1], x at the origin in
+/// it) under a huge uniform lamp (M = 1 at z = 3).
+Scene under_water(double half) {
+  SceneBuilder b;
+  b.rectangle(-1e4, 1e4, -1e4, 1e4, 3, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+  b.box({-half, -half, -1}, {half, half, 1}, b.material("water", Refraction{Rgb::Constant(1.33)}));
+  return b.scene();
+}
+
+TEST(RefractionKnob, UnderWaterTheSkyConvergesToTheClosedForm) {
+  // Inside a medium under a uniform sky H = M (the radiance n^2 L fills only the critical cone;
+  // tests/localpass/path_tracer_refraction_test.cpp checks the path tracer against it). The
+  // paper's heuristic takes one angle for the whole surface, straight up from x, and sees the
+  // whole sky n^2 brighter: n^2 M. Split until the depth ratio varies by 1%, the pieces past
+  // the critical angle pass nothing and the rest converge on M.
+  const Scene scene = under_water(1e3);
+  const LocalPass plain(scene, faces_from_polygons(scene), Method::vertex);
+  const double n2 = 1.33 * 1.33;
+  EXPECT_NEAR(plain.gather(Vec3::Zero(), kUp, 0).refracted[0], n2, 0.01 * n2);
+  LocalPassSettings settings;
+  settings.refraction_tolerance = 0.01;
+  settings.refraction_max_pieces = 4096;
+  const LocalPass knob(scene, faces_from_polygons(scene), Method::vertex, settings);
+  const LocalPassResult r = knob.gather(Vec3::Zero(), kUp, 0);
+  EXPECT_NEAR(r.refracted[0], 1, 0.02) << r.refracted_images << " images";
+}
+
+TEST(RefractionKnob, PiecesTileTheFacetAndMeetTheTolerance) {
+  const Scene scene = under_water(1e3);
+  const std::vector<RefractingFacet> facets = refracting_facets(scene);
+  for (const RefractingFacet& f : facets) {
+    const double area = 0.5 * newell_vector(f.outline).norm();
+    // Infinite tolerance: the facet itself.
+    const std::vector<RefractingFacet> whole =
+        facet_pieces(f, Vec3(0.3, -0.2, 0), false, std::numeric_limits<double>::infinity(), 64);
+    ASSERT_EQ(whole.size(), 1u);
+    EXPECT_EQ(whole[0].outline, f.outline);
+    for (const double tolerance : {0.5, 0.05}) {
+      const std::vector<RefractingFacet> pieces =
+          facet_pieces(f, Vec3(0.3, -0.2, 0), false, tolerance, 512);
+      double sum = 0;
+      for (const RefractingFacet& p : pieces) {
+        sum += 0.5 * newell_vector(p.outline).norm();
+        for (const Vec3& v : p.outline) EXPECT_NEAR(f.height(v), 0, 1e-9) << "off the plane";
+        EXPECT_EQ(p.normal, f.normal);
+        EXPECT_EQ(p.polygon, f.polygon);
+      }
+      EXPECT_NEAR(sum, area, 1e-9 * area) << "the pieces tile the facet";
+      EXPECT_LE(pieces.size(), 512u);
+    }
+  }
+}
+
+TEST(RefractionKnob, CullingChangesNothing) {
+  // A path whose later pieces' images lie outside the earlier ones' passes no line from x
+  // (may_pass): skipping it changes nothing.
+  const Scene scene = lamp_over_box(refracting(Rgb(1.45, 1.5, 1.6), Rgb(0.9, 0.8, 0.7)));
+  LocalPassSettings settings;
+  settings.refraction_tolerance = 0.2;
+  const LocalPass culled(scene, faces_from_polygons(scene), Method::vertex, settings);
+  settings.refraction_culling = false;
+  const LocalPass every(scene, faces_from_polygons(scene), Method::vertex, settings);
+  int fewer = 0;
+  for (const Vec3& x : kFloorPoints) {
+    const LocalPassResult a = culled.gather(x, kUp, 0), b = every.gather(x, kUp, 0);
+    EXPECT_LE((a.refracted - b.refracted).cwiseAbs().maxCoeff(), 1e-12 * b.refracted.maxCoeff())
+        << "at " << x.transpose() << ": " << a.refracted.transpose() << " against "
+        << b.refracted.transpose();
+    if (a.refracted_images < b.refracted_images) ++fewer;
+  }
+  EXPECT_GE(fewer, 2) << "the culling must take part";
 }
 
 }  // namespace
