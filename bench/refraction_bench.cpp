@@ -82,8 +82,7 @@ int main(int argc, char** argv) {
       for (rad::Material& m : scene.materials) {
         if (m.refracts()) m.refraction->fresnel = fresnel;
       }
-      const std::vector<rad::ProbePoint> points =
-          rad::read_points_csv(data + name + "-points.csv");
+      const std::vector<rad::ProbePoint> points = rad::read_points_csv(data + name + "-points.csv");
       const Reference model = trace(scene, points, false, paths);
       rad::Scene deep = scene;
       deep.refraction_depth = 8;
@@ -121,10 +120,10 @@ int main(int argc, char** argv) {
         long total_images = 0;
         for (const int n : images) total_images += n;
         const double error = rms_error(value, model.value);
-        std::printf("| %s | %.3g | %ld | %.2f | %.2f |\n",
-                    std::isfinite(knob) ? std::to_string(knob).substr(0, 4).c_str()
-                                        : "none (the paper)",
-                    seconds, total_images, error, rms_error(value, physics.value));
+        std::printf(
+            "| %s | %.3g | %ld | %.2f | %.2f |\n",
+            std::isfinite(knob) ? std::to_string(knob).substr(0, 4).c_str() : "none (the paper)",
+            seconds, total_images, error, rms_error(value, physics.value));
         knob_series.x.push_back(std::isfinite(knob) ? knob : 2.0);
         knob_series.y.push_back(error);
         cost_series.x.push_back(seconds);

@@ -53,6 +53,9 @@ struct LocalPass::Refracting {
   double tolerance;
   int max_pieces;
   bool culling;
+  /// Per facet: the facets of its object when that object is convex (every vertex on or behind
+  /// every facet's plane), else empty: x is inside a convex object only when it is behind all.
+  std::vector<std::vector<int>> convex_object;
 };
 
 LocalPass::~LocalPass() = default;
@@ -100,6 +103,20 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
       r->tolerance = settings.refraction_tolerance;
       r->max_pieces = std::max(1, settings.refraction_max_pieces);
       r->culling = settings.refraction_culling;
+      r->convex_object.resize(r->facets.size());
+      for (size_t i = 0; i < r->facets.size(); ++i) {
+        std::vector<int> same;
+        bool convex = true;
+        for (size_t j = 0; j < r->facets.size(); ++j) {
+          if (r->facets[j].object != r->facets[i].object) continue;
+          same.push_back(static_cast<int>(j));
+          for (const RefractingFacet& g : r->facets) {
+            if (g.object != r->facets[i].object) continue;
+            for (const Vec3& v : g.outline) convex = convex && r->facets[j].height(v) <= in_plane_;
+          }
+        }
+        if (convex) r->convex_object[i] = std::move(same);
+      }
       refracting_ = std::move(r);
     }
   }
@@ -111,6 +128,14 @@ void LocalPass::add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& res
     // x on the side the chain starts from: in front of its first facet, or behind it.
     const double h = r.facets[chain.facets.front()].height(x);
     if (!(chain.from_inside ? h < -in_plane_ : h > in_plane_)) continue;
+    if (chain.from_inside) {
+      // Behind one facet of a convex object but in front of another: outside it, and every
+      // line to the first facet's back crosses the object (nothing comes through).
+      bool inside = true;
+      for (const int f : r.convex_object[chain.facets.front()])
+        inside = inside && r.facets[f].height(x) <= in_plane_;
+      if (!inside) continue;
+    }
     // Each facet in pieces (the accuracy knob), seen from where the path reaches it; a path
     // through pieces whose images miss each other is skipped (the beams).
     const int k = static_cast<int>(chain.facets.size());

@@ -96,9 +96,12 @@ bool may_show_through(const std::vector<Vec3>& outline, const Vec3& normal, cons
   const PlaneFrame frame(outline.front(), normal);
   std::vector<Vec2> projected;
   for (const Vec3& p : points) {
+    // The line from x through p meets the plane at x + t (p - x), t = hx / (hx - hp): ahead of
+    // x when p is nearer the plane than x is, or beyond it.
     const double hp = normal.dot(p) - offset;
-    if (!(hp * hx < 0)) return true;  // not beyond the plane: every direction may pass
-    projected.push_back(frame.to_2d(x + (hx / (hx - hp)) * (p - x)));
+    const double t = hx / (hx - hp);
+    if (!(t > 0) || !std::isfinite(t)) return true;  // no claim
+    projected.push_back(frame.to_2d(x + t * (p - x)));
   }
   std::vector<Vec2> aperture;
   for (const Vec3& v : outline) aperture.push_back(frame.to_2d(v));
@@ -189,6 +192,19 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
       beyond_aperture.push_back(plane);
     }
   }
+  // With a fixed receiver, every line that carries light passes the first aperture: a face
+  // whose image it cannot see through that outline neither lights nor hides anything.
+  std::vector<Vec3> first_outline;
+  Vec3 first_normal = Vec3::UnitZ();
+  if (crossing_from && k > 0) {
+    for (const Vec3& v : apertures[0].outline)
+      first_outline.push_back(legs[1].linear * v + legs[1].translation);
+    first_normal = mapped_normal(legs[1].linear, apertures[0].normal);
+  }
+  const auto seen_through_first = [&](const EmittingFace& image) {
+    if (first_outline.empty()) return true;
+    return may_show_through(first_outline, first_normal, *crossing_from, image.vertices);
+  };
   for (int j = k; j >= 0; --j) {
     const Leg& leg = legs[j];
     const bool last = j == k;
@@ -203,7 +219,16 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
       return image;
     };
     std::vector<int> unfolded_polygon(scene.polygons.size(), -1);  // -1: not yet, -2: per face
+    std::vector<Vec3> whole_image;
     for (const EmittingFace& f : faces) {
+      if (crossing_from && k > 0) {
+        // The whole face's image first: its clip lies in it (cheaper than clipping them all).
+        whole_image.clear();
+        for (const Vec3& v : f.vertices) whole_image.push_back(leg.linear * v + leg.translation);
+        EmittingFace whole;
+        whole.vertices = whole_image;
+        if (!seen_through_first(whole)) continue;
+      }
       const std::optional<EmittingFace> clipped = clipped_to(f, leg.bounds, in_plane);
       if (!clipped) continue;
       const Polygon& provenance = scene.polygons[f.polygon];
@@ -226,7 +251,7 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
         }
       }
       std::optional<EmittingFace> face = leg_copy(*clipped);
-      if (!face || !has_area(*face)) continue;
+      if (!face || !has_area(*face) || !seen_through_first(*face)) continue;
       if (target == -2) {
         add(std::move(*face), material, provenance);
         continue;

@@ -63,7 +63,10 @@ struct UnfoldedScene {
 /// inverse transpose. Faces a map flattens (zero area) are left out.
 /// With `crossing_from` (the receiver, for a gather at one point), each leg's image is also
 /// clipped to the far side, seen from it, of the image planes of every aperture before the
-/// leg: a straight line from the receiver reaches it only by crossing them all. Where the legs'
+/// leg: a straight line from the receiver reaches it only by crossing them all. And a face
+/// whose image the receiver cannot see through the first aperture is left out: it neither
+/// lights nor hides a line that passes the aperture (may_show_through), so the gather is the
+/// same over far fewer faces. Where the legs'
 /// images overlap (the two sides of a refracting box: in front of the facet a line enters by
 /// and of the one it leaves by), a line would otherwise reach the last leg through no
 /// aperture at all. Mirror chains keep the legs apart by their construction and pass nothing.
@@ -72,11 +75,12 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
                           const Eigen::Matrix3d& receiver_linear, const Vec3& receiver_translation,
                           double in_plane, const std::optional<Vec3>& crossing_from = {});
 
-/// Culling beams (000 §5): false when no segment from x to a point of the convex hull of
-/// `points` (all beyond the plane of `outline`, seen from x) passes through the convex
-/// `outline` (its unit normal `normal`, either orientation), so that nothing there is seen
-/// through it. Conservative: true whenever a point is not strictly beyond the plane; a margin
-/// of 1e-9 of the reach. Cost O(#points log #points + #outline).
+/// Culling beams (000 §5): false when no line from x through a point of the convex hull of
+/// `points` meets the plane of the convex `outline` (its unit normal `normal`, either
+/// orientation) inside it: nothing there is seen through it, and nothing there hides what is.
+/// Conservative: true whenever the line from x through a point does not meet the plane ahead
+/// of x (a point as far from the plane as x, or farther on its side); a margin of 1e-9 of the
+/// reach. Cost O(#points log #points + #outline).
 bool may_show_through(const std::vector<Vec3>& outline, const Vec3& normal, const Vec3& x,
                       const std::vector<Vec3>& points);
 

@@ -136,6 +136,32 @@ def main():
         table = [line for line in lines if line.startswith("|")]
         out.extend(table[:2] + [line for line in table if "median" in line])
         w("")
+    if os.path.exists("bench/results/refraction.md"):
+        lines = open("bench/results/refraction.md").read().split("\n")
+        w("## Refraction: the heuristic against the path tracer")
+        w("")
+        w("From [`bench/results/refraction.md`](../bench/results/refraction.md)")
+        w("(`bash bench/refraction.sh`): paper 000 §4's apparent-depth heuristic at each setting of")
+        w("`--refraction-tolerance` on the scenes of `data/refraction/` (floor points beside a glass")
+        w("block, a dispersive prism, a flat and a rippled pool under the lamp of a black room), against")
+        w("the path tracer of the heuristic's model (reflections at interfaces dropped) and of the")
+        w("physics. What limits it: [algorithms.md](algorithms.md#refraction-through-polyhedra-paper-000-4-a-heuristic-kept-apart).")
+        w("")
+        for line in lines:
+            if line.startswith("- machine") or line.startswith("- commit") or line.startswith("References"):
+                w(line)
+        w("")
+        for line in lines:
+            if line.startswith("## "):
+                w("#" + line)
+                w("")
+            elif line.startswith("|"):
+                w(line)
+            elif line == "" and out and out[-1].startswith("|"):
+                w("")
+        w("| ![error against the knob](images/refraction-knob.png) | ![error against time](images/refraction-cost.png) |")
+        w("|---|---|")
+        w("")
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")

@@ -8,6 +8,7 @@
 
 #include "scene/polygon_validation.h"
 #include "scene/scene_loader.h"
+#include "tests/scene_builder.h"
 
 namespace rad {
 namespace {
@@ -208,6 +209,43 @@ TEST(RayCaster, RespectsDistanceInterval) {
   EXPECT_FALSE(hit->front_facing);
   EXPECT_TRUE(caster.occluded(back, 0, 10));
   EXPECT_FALSE(caster.occluded(Ray{{5, 5, 0}, {0, 0, 1}}, 0, 10));
+}
+
+TEST(RayCaster, FollowsARayThroughAGlassSlabBySnellsLaw) {
+  // A slab of index 1.5 from z = 1 to 2 over the origin, a ceiling at z = 3: a ray at angle a
+  // from the vertical lands at tan a + tan b + tan a (sin a = 1.5 sin b) with weight 1 (the
+  // radiance factors of the two crossings cancel), or (1 - R_a)(1 - R_b) with Fresnel; one ray
+  // per channel with three indices. The eye rays and the path tracer follow rays so.
+  for (const bool fresnel : {false, true}) {
+    for (const double angle : {0.0, 0.3, 0.9}) {
+      test::SceneBuilder b;
+      Refraction glass;
+      glass.ior = Rgb(1.5, 1.5, 1.5);
+      glass.fresnel = fresnel;
+      b.box({-50, -50, 1}, {50, 50, 2}, b.material("glass", glass));
+      b.rectangle(-100, 100, -100, 100, 3, true, b.material("ceiling", Rgb::Zero(), Rgb::Ones()));
+      const RayCaster caster(b.scene());
+      const Vec3 d(std::sin(angle), 0, std::cos(angle));
+      std::vector<std::pair<Vec3, Rgb>> ceiling;
+      caster.follow({Vec3::Zero(), d}, RayCaster::limits_of(b.scene()), 1e-9,
+                    [&](const Hit& hit, const Rgb& weight, int) {
+                      if (hit.point.z() > 2.5) ceiling.emplace_back(hit.point, weight);
+                    });
+      const double inside = std::asin(std::sin(angle) / 1.5);
+      const double x = 2 * std::tan(angle) + std::tan(inside);
+      // Without Fresnel only the refracted ray goes on; with it the reflected ones end below.
+      ASSERT_EQ(ceiling.size(), 1u) << "angle " << angle;
+      EXPECT_NEAR(ceiling[0].first.x(), x, 1e-9) << "angle " << angle;
+      const auto r = [](double i, double n) {  // Hecht: unpolarised reflectance
+        if (i < 1e-9) return std::pow((n - 1) / (n + 1), 2);
+        const double t = std::asin(std::sin(i) / n);
+        return 0.5 * (std::pow(std::sin(i - t) / std::sin(i + t), 2) +
+                      std::pow(std::tan(i - t) / std::tan(i + t), 2));
+      };
+      const double expected = fresnel ? (1 - r(angle, 1.5)) * (1 - r(angle, 1.5)) : 1.0;
+      EXPECT_NEAR(ceiling[0].second[0], expected, 1e-12) << "angle " << angle;
+    }
+  }
 }
 
 }  // namespace
