@@ -7,7 +7,8 @@
 ///  - plane.h: facing tests (which side of a plane a point is on);
 ///  - tolerance.h: the scene's tolerance policy, one value for the gatherers and the culling;
 ///  - emitting_face.h: the faces the exact gatherers take;
-///  - exact_gatherer.h: the one interface of the two exact gatherers.
+///  - exact_gatherer.h: the one interface of the two exact gatherers;
+///  - refraction.h: the optics of a flat interface (Snell, apparent depth, Fresnel; 000 §4).
 ///
 /// May use: Eigen only.
 #include "geometry/clip.h"
@@ -15,5 +16,6 @@
 #include "geometry/exact_gatherer.h"
 #include "geometry/lambert.h"
 #include "geometry/plane.h"
+#include "geometry/refraction.h"
 #include "geometry/tolerance.h"
 #include "geometry/vec.h"

@@ -2,8 +2,8 @@
 /// Module `scene` (rad_scene): the scene model (materials, planar polygons, an optional camera,
 /// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes,
 /// mesh_reader.h) and their validation, the camera, ray casting (Embree behind ray_caster.h),
-/// the polygons as gatherer faces (polygon_faces.h), and the mirror pieces and their chains
-/// (mirror_pieces.h).
+/// the polygons as gatherer faces (polygon_faces.h), the mirror pieces and their chains
+/// (mirror_pieces.h), and whether a refracting object is a closed solid (closed_surface.h).
 ///
 /// May use: geometry, Embree (in .cpp files only), nlohmann-json.
 #include <filesystem>
