@@ -103,20 +103,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
       r->tolerance = settings.refraction_tolerance;
       r->max_pieces = std::max(1, settings.refraction_max_pieces);
       r->culling = settings.refraction_culling;
-      r->convex_object.resize(r->facets.size());
-      for (size_t i = 0; i < r->facets.size(); ++i) {
-        std::vector<int> same;
-        bool convex = true;
-        for (size_t j = 0; j < r->facets.size(); ++j) {
-          if (r->facets[j].object != r->facets[i].object) continue;
-          same.push_back(static_cast<int>(j));
-          for (const RefractingFacet& g : r->facets) {
-            if (g.object != r->facets[i].object) continue;
-            for (const Vec3& v : g.outline) convex = convex && r->facets[j].height(v) <= in_plane_;
-          }
-        }
-        if (convex) r->convex_object[i] = std::move(same);
-      }
+      r->convex_object = convex_object_facets(r->facets, in_plane_);
       refracting_ = std::move(r);
     }
   }

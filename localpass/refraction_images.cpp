@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "geometry/refraction.h"
 #include "scene/polygon.h"
@@ -68,6 +69,26 @@ std::vector<RefractingFacet> refracting_facets(const Scene& scene) {
     facets.push_back(std::move(facet));
   }
   return facets;
+}
+
+std::vector<std::vector<int>> convex_object_facets(const std::vector<RefractingFacet>& facets,
+                                                   double in_plane) {
+  std::map<int, std::vector<int>> by_object;
+  for (size_t i = 0; i < facets.size(); ++i)
+    by_object[facets[i].object].push_back(static_cast<int>(i));
+  std::vector<std::vector<int>> out(facets.size());
+  for (const auto& [object, members] : by_object) {
+    bool convex = true;
+    for (const int plane : members) {
+      for (const int other : members) {
+        for (const Vec3& v : facets[other].outline)
+          convex = convex && facets[plane].height(v) <= in_plane;
+      }
+    }
+    if (!convex) continue;
+    for (const int f : members) out[f] = members;
+  }
+  return out;
 }
 
 std::vector<RefractionChain> refraction_chains(const std::vector<RefractingFacet>& facets,

@@ -46,6 +46,13 @@ struct RefractingFacet {
 /// The convex pieces of the scene's refracting polygons, in polygon order.
 std::vector<RefractingFacet> refracting_facets(const Scene& scene);
 
+/// Per facet: the facets of its object when that object is convex (every vertex of the object
+/// on or behind every one of its facets' planes, within `in_plane`), else empty. A point is
+/// inside a convex object exactly when it is on or behind all of them. Cost O(facets x
+/// vertices) per object.
+std::vector<std::vector<int>> convex_object_facets(const std::vector<RefractingFacet>& facets,
+                                                   double in_plane);
+
 /// A chain of facets crossed on the way from a receiver to the sources: from outside (x in
 /// front of the first facet) in at odd positions and out at even ones; from inside (x behind
 /// it) out first. Every chain ends outside, where the sources are.

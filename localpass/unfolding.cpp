@@ -201,9 +201,9 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
       first_outline.push_back(legs[1].linear * v + legs[1].translation);
     first_normal = mapped_normal(legs[1].linear, apertures[0].normal);
   }
-  const auto seen_through_first = [&](const EmittingFace& image) {
-    if (first_outline.empty()) return true;
-    return may_show_through(first_outline, first_normal, *crossing_from, image.vertices);
+  const auto seen_through_first = [&](const std::vector<Vec3>& image) {
+    return first_outline.empty() ||
+           may_show_through(first_outline, first_normal, *crossing_from, image);
   };
   for (int j = k; j >= 0; --j) {
     const Leg& leg = legs[j];
@@ -221,13 +221,11 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
     std::vector<int> unfolded_polygon(scene.polygons.size(), -1);  // -1: not yet, -2: per face
     std::vector<Vec3> whole_image;
     for (const EmittingFace& f : faces) {
-      if (crossing_from && k > 0) {
+      if (!first_outline.empty()) {
         // The whole face's image first: its clip lies in it (cheaper than clipping them all).
         whole_image.clear();
         for (const Vec3& v : f.vertices) whole_image.push_back(leg.linear * v + leg.translation);
-        EmittingFace whole;
-        whole.vertices = whole_image;
-        if (!seen_through_first(whole)) continue;
+        if (!seen_through_first(whole_image)) continue;
       }
       const std::optional<EmittingFace> clipped = clipped_to(f, leg.bounds, in_plane);
       if (!clipped) continue;
@@ -251,7 +249,7 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
         }
       }
       std::optional<EmittingFace> face = leg_copy(*clipped);
-      if (!face || !has_area(*face) || !seen_through_first(*face)) continue;
+      if (!face || !has_area(*face) || !seen_through_first(face->vertices)) continue;
       if (target == -2) {
         add(std::move(*face), material, provenance);
         continue;

@@ -165,17 +165,65 @@ Rgb RayCaster::transmittance(const Ray& ray, double t_min, double t_max, double 
   }
 }
 
+namespace {
+
+/// A path of RayCaster::follow on its way: a ray and what it carries.
+struct Branch {
+  Ray ray;
+  Rgb weight;
+  double t_min;
+  RayCaster::Bends bends;
+  Rgb attenuation = Rgb::Zero();  ///< Of the medium this leg runs through (0: outside)
+  bool first_leg() const { return bends.reflections == 0 && bends.refractions == 0; }
+};
+
+/// The branches of `b` at a refracting interface it meets at `hit` (000 §4; fronts face out,
+/// so a front is crossed into the medium, a back out of it): the refracted ray per distinct
+/// index (one ray, or one per channel when dispersive), times what the crossing passes and
+/// 1 / eta^2; and, when interfaces reflect, the reflected ray with the Fresnel reflection and
+/// the channels past the critical angle.
+void split_at_interface(const Branch& b, const Hit& hit, const Refraction& r, bool reflects,
+                        double gap, std::vector<Branch>& branches) {
+  const Vec3& d = b.ray.direction;
+  const double cos_near = std::abs(hit.normal.dot(d));
+  RayCaster::Bends next = b.bends;
+  ++next.refractions;
+  const Rgb beyond = hit.front_facing ? r.attenuation : Rgb::Zero();
+  Rgb reflected = Rgb::Zero();
+  const int rays = r.dispersive() ? 3 : 1;
+  for (int c = 0; c < rays; ++c) {
+    const Rgb channels = r.dispersive() ? Rgb(Rgb::Unit(c)) : Rgb(Rgb::Ones());
+    const double eta = hit.front_facing ? r.ior[c] : 1 / r.ior[c];
+    const std::optional<Vec3> t = refract(d, hit.normal, eta);
+    if (!t) {
+      reflected += channels;  // total internal reflection, Fresnel or not
+      continue;
+    }
+    Rgb passed = channels.cwiseProduct(r.transmittance);
+    if (r.fresnel) {
+      const double fresnel = fresnel_transmission(cos_near, eta);
+      passed = fresnel * channels;
+      reflected += (1 - fresnel) * channels;
+    }
+    branches.push_back(
+        {{hit.point, *t}, b.weight.cwiseProduct(passed) / (eta * eta), gap, next, beyond});
+  }
+  if (reflected != Rgb::Zero() && reflects) {
+    // Back into the medium the ray came through.
+    const Rgb same_side = hit.front_facing ? Rgb(Rgb::Zero()) : r.attenuation;
+    branches.push_back({{hit.point, reflect(d, hit.normal)},
+                        b.weight.cwiseProduct(reflected),
+                        gap,
+                        next,
+                        same_side});
+  }
+}
+
+}  // namespace
+
 void RayCaster::follow(const Ray& ray, Bends limits, double gap,
                        const std::function<void(const Hit&, const Rgb&, int)>& visit,
                        double near) const {
-  struct Branch {
-    Ray ray;
-    Rgb weight;
-    double t_min;
-    Bends bends;
-    Rgb attenuation = Rgb::Zero();  ///< Of the medium this leg runs through (0: outside)
-    bool first_leg() const { return bends.reflections == 0 && bends.refractions == 0; }
-  };
   std::vector<Branch> branches{{ray, Rgb::Ones(), 0.0, {}}};
   while (!branches.empty()) {
     Branch b = branches.back();
@@ -193,8 +241,7 @@ void RayCaster::follow(const Ray& ray, Bends limits, double gap,
         b.weight = b.weight.cwiseProduct(Rgb(lost.array().exp()));
         attenuated_to = hit->distance;
       }
-      const int bends = b.bends.reflections + b.bends.refractions;
-      visit(*hit, b.weight, bends);
+      visit(*hit, b.weight, b.bends.reflections + b.bends.refractions);
       const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
       if (hit->front_facing && m.is_mirror() && b.bends.reflections < limits.reflections) {
         Bends next = b.bends;
@@ -205,46 +252,8 @@ void RayCaster::follow(const Ray& ray, Bends limits, double gap,
                             next,
                             b.attenuation});
       }
-      if (m.refracts() && b.bends.refractions < limits.refractions) {
-        // 000 §4: into the medium at a front, out of it at a back (fronts face out).
-        const Refraction& r = *m.refraction;
-        const Vec3& d = b.ray.direction;
-        const double cos_near = std::abs(hit->normal.dot(d));
-        Bends next = b.bends;
-        ++next.refractions;
-        const Rgb inside = r.attenuation, beyond = hit->front_facing ? inside : Rgb::Zero();
-        Rgb reflected = Rgb::Zero();
-        // One ray per distinct index: three for a dispersive interface, one otherwise.
-        for (int c = 0; c < 3; ++c) {
-          if (r.dispersive() ? false : c > 0) break;
-          const double eta = hit->front_facing ? r.ior[c] : 1 / r.ior[c];
-          Rgb channels = Rgb::Zero();
-          if (r.dispersive()) {
-            channels[c] = 1;
-          } else {
-            channels = Rgb::Ones();
-          }
-          const std::optional<Vec3> t = refract(d, hit->normal, eta);
-          if (!t) {
-            reflected += channels;  // total internal reflection, Fresnel or not
-            continue;
-          }
-          const double fresnel = r.fresnel ? fresnel_transmission(cos_near, eta) : 0;
-          const Rgb passed =
-              r.fresnel ? Rgb(fresnel * channels) : channels.cwiseProduct(r.transmittance);
-          if (r.fresnel) reflected += (1 - fresnel) * channels;
-          branches.push_back(
-              {{hit->point, *t}, b.weight.cwiseProduct(passed) / (eta * eta), gap, next, beyond});
-        }
-        if (reflected != Rgb::Zero() && limits.interface_reflections) {
-          // Back into the medium the ray came through.
-          branches.push_back({{hit->point, reflect(d, hit->normal)},
-                              b.weight.cwiseProduct(reflected),
-                              gap,
-                              next,
-                              hit->front_facing ? Rgb(Rgb::Zero()) : inside});
-        }
-      }
+      if (m.refracts() && b.bends.refractions < limits.refractions)
+        split_at_interface(b, *hit, *m.refraction, limits.interface_reflections, gap, branches);
       b.weight = b.weight.cwiseProduct(m.transmittance);
       if (b.weight == Rgb::Zero()) break;
       b.t_min = std::max(hit->distance, b.t_min) + gap;  // on past it, never back

@@ -153,9 +153,8 @@ class Reader {
   std::string file_;
 };
 
-/// The refraction keys of a material with "ior" (000 §4). A refracting material is clear glass
-/// unless told otherwise: reflectance 0 and transmittance 1 when the file omits them.
-Refraction read_refraction(const Reader& in, const std::string& where, const Json& j, Material& m) {
+/// The refraction keys of a material with "ior" (000 §4); transmittance 1 when omitted.
+Refraction read_refraction(const Reader& in, const std::string& where, const Json& j) {
   Refraction r;
   r.ior = in.rgb(j["ior"], where + ".ior");
   for (int c = 0; c < 3; ++c) {
@@ -188,7 +187,6 @@ Refraction read_refraction(const Reader& in, const std::string& where, const Jso
       in.fail(where, msg.str());
     }
   }
-  if (!j.contains("reflectance")) m.reflectance = Rgb::Zero();
   return r;
 }
 
@@ -199,10 +197,12 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
       {"reflectance", "emission", "transmittance", "specular", "ior", "fresnel", "attenuation"});
   Material m;
   m.name = name;
+  // A refracting material is clear glass unless told otherwise: no diffuse part by default.
+  if (j.contains("ior")) m.reflectance = Rgb::Zero();
   if (j.contains("reflectance")) m.reflectance = in.rgb(j["reflectance"], where + ".reflectance");
   if (j.contains("emission")) m.emission = in.rgb(j["emission"], where + ".emission");
   if (j.contains("ior")) {
-    m.refraction = read_refraction(in, where, j, m);
+    m.refraction = read_refraction(in, where, j);
   } else {
     for (const char* key : {"fresnel", "attenuation"}) {
       if (j.contains(key))

@@ -13,6 +13,11 @@ import sys
 RESULTS = "docs/images/results"
 
 
+def provenance(lines, *prefixes):
+    """A benchmark file's lines saying where it ran: machine, commit, and any of `prefixes`."""
+    return [line for line in lines if line.startswith(("- machine", "- commit") + prefixes)]
+
+
 def fmt(value, digits=3):
     return f"{float(value):.{digits}g}"
 
@@ -129,9 +134,7 @@ def main():
         w("(`bash bench/solve_versus.sh`): the Cornell box's default solve, this commit's binary and")
         w("the earlier commit's back to back in pairs; ratios new / base, medians over the pairs.")
         w("")
-        for line in lines:
-            if line.startswith("- machine") or line.startswith("- commit"):
-                w(line)
+        out.extend(provenance(lines))
         w("")
         table = [line for line in lines if line.startswith("|")]
         out.extend(table[:2] + [line for line in table if "median" in line])
@@ -147,9 +150,7 @@ def main():
         w("the path tracer of the heuristic's model (reflections at interfaces dropped) and of the")
         w("physics. What limits it: [algorithms.md](algorithms.md#refraction-through-polyhedra-paper-000-4-a-heuristic-kept-apart).")
         w("")
-        for line in lines:
-            if line.startswith("- machine") or line.startswith("- commit") or line.startswith("References"):
-                w(line)
+        out.extend(provenance(lines, "References"))
         w("")
         for line in lines:
             if line.startswith("## "):

@@ -1,6 +1,7 @@
 #pragma once
-/// Closed-form configuration factors for tests (Howell's catalog; shared/ground-truth/
-/// formfactors.md). Independent of the code under test: plain formulas.
+/// Closed forms for tests: configuration factors (Howell's catalog; shared/ground-truth/
+/// formfactors.md) and Fresnel's reflectances. Independent of the code under test: plain
+/// formulas.
 #include <cmath>
 #include <numbers>
 
@@ -21,6 +22,24 @@ inline double howell_rectangle(double x0, double x1, double y0, double y1, doubl
     return (x < 0 ? -1 : 1) * (y < 0 ? -1 : 1) * howell_b3(std::abs(x), std::abs(y), c);
   };
   return corner(x1, y1) - corner(x0, y1) - corner(x1, y0) + corner(x0, y0);
+}
+
+/// Fresnel's reflectances of s and p light at an interface of relative index eta (far / near)
+/// for light arriving at angle i from the normal, in Hecht's sine and tangent forms (not the
+/// cosine forms geometry/refraction.h uses); the limit ((eta - 1) / (eta + 1))^2 at normal
+/// incidence. Requires sin(i) < eta (short of total internal reflection).
+struct FresnelReflectance {
+  double s, p;
+  double unpolarised() const { return 0.5 * (s + p); }
+};
+inline FresnelReflectance hecht_reflectance(double i, double eta) {
+  if (i < 1e-9) {
+    const double r = std::pow((eta - 1) / (eta + 1), 2);
+    return {r, r};
+  }
+  const double t = std::asin(std::sin(i) / eta);
+  return {std::pow(std::sin(i - t) / std::sin(i + t), 2),
+          std::pow(std::tan(i - t) / std::tan(i + t), 2)};
 }
 
 /// Test vectors from shared/ground-truth/formfactors.md (15 digits).

@@ -30,31 +30,17 @@ class SceneBuilder {
   }
   /// An axis-aligned box [lo, hi], its six faces' fronts facing out: one object.
   void box(const Vec3& lo, const Vec3& hi, int material) {
+    // Corner k has x = hi where bit 0 of k is set, y where bit 1 is, z where bit 2 is; each
+    // face counter-clockwise seen from outside.
+    const auto corner = [&](int k) {
+      return Vec3(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+    };
+    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     const int first = static_cast<int>(scene_.polygons.size());
     const int object = static_cast<int>(scene_.objects.size());
-    rectangle(lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), true, material);
-    rectangle(lo.x(), hi.x(), lo.y(), hi.y(), hi.z(), false, material);
-    polygon({{lo.x(), lo.y(), lo.z()},
-             {hi.x(), lo.y(), lo.z()},
-             {hi.x(), lo.y(), hi.z()},
-             {lo.x(), lo.y(), hi.z()}},
-            material);
-    polygon({{lo.x(), hi.y(), lo.z()},
-             {lo.x(), hi.y(), hi.z()},
-             {hi.x(), hi.y(), hi.z()},
-             {hi.x(), hi.y(), lo.z()}},
-            material);
-    polygon({{lo.x(), lo.y(), lo.z()},
-             {lo.x(), lo.y(), hi.z()},
-             {lo.x(), hi.y(), hi.z()},
-             {lo.x(), hi.y(), lo.z()}},
-            material);
-    polygon({{hi.x(), lo.y(), lo.z()},
-             {hi.x(), hi.y(), lo.z()},
-             {hi.x(), hi.y(), hi.z()},
-             {hi.x(), lo.y(), hi.z()}},
-            material);
-    // One object of six faces.
+    for (const auto& f : faces)
+      polygon({corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3])}, material);
     scene_.objects.resize(object + 1);
     scene_.objects[object].polygon_count = static_cast<int>(scene_.polygons.size()) - first;
     for (int p = first; p < static_cast<int>(scene_.polygons.size()); ++p)

@@ -11,6 +11,7 @@
 
 #include "localpass/path_tracer.h"
 #include "tests/closed_forms.h"
+#include "tests/path_trace_checks.h"
 #include "tests/scene_builder.h"
 
 namespace rad {
@@ -26,14 +27,6 @@ double integrate(const std::function<double(double)>& f, double a, double b,
   double sum = f(a) + f(b);
   for (int i = 1; i < intervals; ++i) sum += f(a + i * h) * (i % 2 ? 4 : 2);
   return sum * h / 3;
-}
-
-/// Unpolarised Fresnel reflectance from outside (index 1) at angle `i` into index n.
-double hecht_reflectance(double i, double n) {
-  if (i < 1e-9) return std::pow((n - 1) / (n + 1), 2);
-  const double t = std::asin(std::sin(i) / n);
-  return 0.5 * (std::pow(std::sin(i - t) / std::sin(i + t), 2) +
-                std::pow(std::tan(i - t) / std::tan(i + t), 2));
 }
 
 struct Slab {
@@ -54,7 +47,7 @@ double slab_closed_form(const Slab& s) {
   return integrate(
       [&](double i) {
         const double t = std::asin(std::sin(i) / s.ior);
-        const double r = s.fresnel ? hecht_reflectance(i, s.ior) : 0;
+        const double r = s.fresnel ? test::hecht_reflectance(i, s.ior).unpolarised() : 0;
         const double pass = s.fresnel ? 1 - r : s.transmittance;
         const double dim = std::exp(-s.attenuation * s.thickness / std::cos(t));
         double through = 0;
@@ -82,20 +75,7 @@ double finite_source_deficit(double height) {
   return 1 - test::howell_rectangle(-1000, 1000, -1000, 1000, height);
 }
 
-/// |mean - expected| <= 4 standard errors + `slack` per channel, and the standard error below
-/// `precision` relative (so that the check means something).
-::testing::AssertionResult within(const PathTraceEstimate& e, const Rgb& expected, double slack,
-                                  double precision = 0.005) {
-  for (int c = 0; c < 3; ++c) {
-    const double tolerance = 4 * e.standard_error[c] + slack;
-    if (!(std::abs(e.mean[c] - expected[c]) <= tolerance) ||
-        !(e.standard_error[c] <= precision * std::max(expected[c], 1e-12))) {
-      return ::testing::AssertionFailure() << "channel " << c << ": " << e.mean[c] << " +- "
-                                           << e.standard_error[c] << ", expected " << expected[c];
-    }
-  }
-  return ::testing::AssertionSuccess();
-}
+using test::within;
 
 PathTraceEstimate trace_slab(const Refraction& r, const Slab& s, uint64_t seed) {
   const Scene scene = slab_scene(r, s.thickness, s.depth);
@@ -109,7 +89,7 @@ TEST(PathTracerRefraction, ClearSlabChangesNothing) {
   Refraction r;
   r.ior = Rgb::Constant(1.5);
   const double deficit = finite_source_deficit(4);
-  EXPECT_TRUE(within(trace_slab(r, Slab{}, 1), Rgb::Ones(), deficit));
+  EXPECT_TRUE(within(trace_slab(r, Slab{}, 1), Rgb::Ones(), 0.005, deficit));
 }
 
 TEST(PathTracerRefraction, IndexOneIsTwoFilters) {
@@ -117,7 +97,8 @@ TEST(PathTracerRefraction, IndexOneIsTwoFilters) {
   r.ior = Rgb::Ones();
   r.transmittance = Rgb(0.3, 0.6, 0.9);
   const Rgb expected = r.transmittance.cwiseProduct(r.transmittance);
-  EXPECT_TRUE(within(trace_slab(r, Slab{1.0, false}, 2), expected, finite_source_deficit(4)));
+  EXPECT_TRUE(
+      within(trace_slab(r, Slab{1.0, false}, 2), expected, 0.005, finite_source_deficit(4)));
 }
 
 TEST(PathTracerRefraction, FresnelSlabWithInternalReflectionsAndDispersion) {
@@ -128,7 +109,7 @@ TEST(PathTracerRefraction, FresnelSlabWithInternalReflectionsAndDispersion) {
   Rgb expected;
   for (int c = 0; c < 3; ++c) expected[c] = slab_closed_form(Slab{r.ior[c], true});
   EXPECT_LT(expected[2], expected[0]) << "a denser slab reflects more";
-  EXPECT_TRUE(within(trace_slab(r, Slab{}, 3), expected, finite_source_deficit(4)));
+  EXPECT_TRUE(within(trace_slab(r, Slab{}, 3), expected, 0.005, finite_source_deficit(4)));
 }
 
 TEST(PathTracerRefraction, AttenuationAlongThePathInside) {
@@ -142,7 +123,7 @@ TEST(PathTracerRefraction, AttenuationAlongThePathInside) {
     expected[c] = slab_closed_form(s);
   }
   EXPECT_NEAR(expected[0], 1, 1e-9);
-  EXPECT_TRUE(within(trace_slab(r, Slab{}, 4), expected, finite_source_deficit(4)));
+  EXPECT_TRUE(within(trace_slab(r, Slab{}, 4), expected, 0.005, finite_source_deficit(4)));
 }
 
 TEST(PathTracerRefraction, InsideTheMediumTheIrradianceIsTheSame) {
@@ -159,7 +140,7 @@ TEST(PathTracerRefraction, InsideTheMediumTheIrradianceIsTheSame) {
   // Each path finds n^2 or 0: a binary spread, 100,000 paths for 1% precision.
   const PathTraceEstimate e =
       PathTracer(b.scene()).irradiance(Vec3::Zero(), Vec3::UnitZ(), 100000, 5);
-  EXPECT_TRUE(within(e, Rgb::Ones(), finite_source_deficit(3), 0.01))
+  EXPECT_TRUE(within(e, Rgb::Ones(), 0.01, finite_source_deficit(3)))
       << "M / n^2 would be " << (1 / r.ior.array().square());
 }
 

@@ -11,6 +11,7 @@
 #include "scene/polygon_faces.h"
 #include "scene/scene_loader.h"
 #include "tests/closed_forms.h"
+#include "tests/path_trace_checks.h"
 #include "tests/scene_builder.h"
 
 namespace rad {
@@ -18,20 +19,7 @@ namespace {
 
 using test::SceneBuilder;
 
-/// |mean - expected| <= 4 standard errors per channel (and the error is small enough to mean
-/// something: below `precision` relative).
-::testing::AssertionResult within(const PathTraceEstimate& e, const Rgb& expected,
-                                  double precision) {
-  for (int c = 0; c < 3; ++c) {
-    const double tolerance = 4 * e.standard_error[c] + 1e-12;
-    if (!(std::abs(e.mean[c] - expected[c]) <= tolerance) ||
-        !(e.standard_error[c] <= precision * std::max(expected[c], 1e-12))) {
-      return ::testing::AssertionFailure() << "channel " << c << ": " << e.mean[c] << " +- "
-                                           << e.standard_error[c] << ", expected " << expected[c];
-    }
-  }
-  return ::testing::AssertionSuccess();
-}
+using test::within;
 
 TEST(PathTracer, FurnaceIsEOverOneMinusRho) {
   // Closed cube, every face E = 1, rho = 0.5: H = B = 2 everywhere, by every bounce sampled.

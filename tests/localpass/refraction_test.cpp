@@ -3,6 +3,8 @@
 // index 1 against the thin filters of 000 §2.2 (vertex tracing through the same box as two
 // filters), total internal reflection, one index per channel against three grey runs, and a
 // huge uniform slab against Lambert's formula without it.
+#include "geometry/refraction.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -198,29 +200,44 @@ TEST(RefractionKnob, UnderWaterTheSkyConvergesToTheClosedForm) {
 }
 
 TEST(RefractionKnob, PiecesTileTheFacetAndMeetTheTolerance) {
-  const Scene scene = under_water(1e3);
-  const std::vector<RefractingFacet> facets = refracting_facets(scene);
-  for (const RefractingFacet& f : facets) {
+  // The box's facets seen from a floor point beside it, going in (no critical angle): split
+  // until the depth ratio at every corner of every piece is within the tolerance of its value
+  // at the piece's centroid, the pieces tiling the facet in its plane.
+  const Scene scene = lamp_over_box(refracting(Rgb(1.4, 1.5, 1.6)));
+  const Vec3 x = kFloorPoints[1];
+  int split = 0;  // pieces added at the tight tolerance
+  for (const RefractingFacet& f : refracting_facets(scene)) {
+    if (!(f.height(x) > 0)) continue;
     const double area = 0.5 * newell_vector(f.outline).norm();
-    // Infinite tolerance: the facet itself.
     const std::vector<RefractingFacet> whole =
-        facet_pieces(f, Vec3(0.3, -0.2, 0), false, std::numeric_limits<double>::infinity(), 64);
-    ASSERT_EQ(whole.size(), 1u);
+        facet_pieces(f, x, true, std::numeric_limits<double>::infinity(), 64);
+    ASSERT_EQ(whole.size(), 1u) << "an infinite tolerance keeps the facet";
     EXPECT_EQ(whole[0].outline, f.outline);
     for (const double tolerance : {0.5, 0.05}) {
-      const std::vector<RefractingFacet> pieces =
-          facet_pieces(f, Vec3(0.3, -0.2, 0), false, tolerance, 512);
+      const std::vector<RefractingFacet> pieces = facet_pieces(f, x, true, tolerance, 4096);
+      EXPECT_LT(pieces.size(), 4096u) << "met before the budget";
+      if (tolerance < 0.1) split += static_cast<int>(pieces.size()) - 1;
       double sum = 0;
       for (const RefractingFacet& p : pieces) {
         sum += 0.5 * newell_vector(p.outline).norm();
-        for (const Vec3& v : p.outline) EXPECT_NEAR(f.height(v), 0, 1e-9) << "off the plane";
         EXPECT_EQ(p.normal, f.normal);
         EXPECT_EQ(p.polygon, f.polygon);
+        const auto ratio = [&](const Vec3& v, int c) {
+          const double cos_near = std::abs((v - x).normalized().dot(f.normal));
+          return *depth_ratio(cos_near, p.refraction.ior[c]);
+        };
+        for (const Vec3& v : p.outline) {
+          EXPECT_NEAR(f.height(v), 0, 1e-9) << "off the plane";
+          for (int c = 0; c < 3; ++c) {
+            const double middle = ratio(p.centroid, c);
+            EXPECT_LE(std::abs(ratio(v, c) - middle), tolerance * middle * (1 + 1e-12));
+          }
+        }
       }
       EXPECT_NEAR(sum, area, 1e-9 * area) << "the pieces tile the facet";
-      EXPECT_LE(pieces.size(), 512u);
     }
   }
+  EXPECT_GT(split, 4) << "the tight tolerance must split";
 }
 
 TEST(RefractionKnob, CullingChangesNothing) {

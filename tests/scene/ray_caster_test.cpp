@@ -8,6 +8,7 @@
 
 #include "scene/polygon_validation.h"
 #include "scene/scene_loader.h"
+#include "tests/closed_forms.h"
 #include "tests/scene_builder.h"
 
 namespace rad {
@@ -236,13 +237,8 @@ TEST(RayCaster, FollowsARayThroughAGlassSlabBySnellsLaw) {
       // Without Fresnel only the refracted ray goes on; with it the reflected ones end below.
       ASSERT_EQ(ceiling.size(), 1u) << "angle " << angle;
       EXPECT_NEAR(ceiling[0].first.x(), x, 1e-9) << "angle " << angle;
-      const auto r = [](double i, double n) {  // Hecht: unpolarised reflectance
-        if (i < 1e-9) return std::pow((n - 1) / (n + 1), 2);
-        const double t = std::asin(std::sin(i) / n);
-        return 0.5 * (std::pow(std::sin(i - t) / std::sin(i + t), 2) +
-                      std::pow(std::tan(i - t) / std::tan(i + t), 2));
-      };
-      const double expected = fresnel ? (1 - r(angle, 1.5)) * (1 - r(angle, 1.5)) : 1.0;
+      const double passed = 1 - test::hecht_reflectance(angle, 1.5).unpolarised();
+      const double expected = fresnel ? passed * passed : 1.0;
       EXPECT_NEAR(ceiling[0].second[0], expected, 1e-12) << "angle " << angle;
     }
   }
