@@ -46,6 +46,12 @@ void run_info(const InfoOptions& options) {
     out["bounds"] = {{"min", to_json(bounds.lo)}, {"max", to_json(bounds.hi)}};
     out["emitters"] = scene.emitter_count();
     out["emitted_power"] = to_json(scene.emitted_power());
+    out["lights"] = nlohmann::json::array();
+    for (const PointLight& light : scene.lights) {
+      out["lights"].push_back(
+          {{"position", to_json(light.position)}, {"intensity", to_json(light.intensity)}});
+    }
+    out["light_power"] = to_json(scene.light_power());
     out["warnings"] = scene.warnings;
     for (size_t m = 0; m < scene.materials.size(); ++m) {
       const Material& mat = scene.materials[m];
@@ -86,6 +92,10 @@ void run_info(const InfoOptions& options) {
             << (scene.emitter_count() == 1 ? "" : "s") << "\n"
             << "emitted power  " << triple(scene.emitted_power())
             << " RGB (exitance x area; W when lengths are metres)\n";
+  if (!scene.lights.empty()) {
+    std::cout << "point lights   " << scene.lights.size() << ", power "
+              << triple(scene.light_power()) << " RGB (4 pi x intensity)\n";
+  }
   if (scene.camera) {
     const CameraSpec& c = *scene.camera;
     std::cout << "camera         eye " << triple(c.eye) << ", look_at " << triple(c.look_at)

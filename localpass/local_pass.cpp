@@ -79,6 +79,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
     blocker_pieces_[piece.polygon].push_back(std::move(piece));
   in_plane_ = tolerance_.in_plane;
   mirror_culling_ = settings.mirror_culling;
+  if (!scene.lights.empty()) lights_ = std::make_unique<PointLightVisibility>(scene);
   const std::vector<MirrorPiece> pieces = mirror_pieces(scene);
   LocalPassSettings unfolded = settings;
   unfolded.mirror_depth = 0;      // an unfolded scene has no mirrors (images never reflect)
@@ -167,7 +168,11 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
   // of its own brightest channel: the sum of the bounds is then at most T times the largest
   // of those, which is at most the brightest channel of H.
   const double share = tolerance / static_cast<double>(1 + active.size());
-  LocalPassResult result = gather_direct(x, n, share);
+  // Point lights' direct light is exact (no width): part of the first term, whose stopping
+  // rule then counts it in the value the bound is measured against.
+  const Rgb from_lights =
+      lights_ ? lights_->irradiance(x, n, culling_.candidates(x, n)) : Rgb::Zero();
+  LocalPassResult result = gather_direct(x, n, share, from_lights);
   for (const Mirror* m : active) {
     const LocalPassResult r =
         m->pass->gather(m->unfolded.receiver(x), m->unfolded.receiver_normal(n), share);
@@ -185,8 +190,12 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
   return result;
 }
 
-LocalPassResult LocalPass::gather_direct(const Vec3& x, const Vec3& n, double tolerance) const {
-  return occlusion_culling_ ? gather_by_clusters(x, n, tolerance) : gather_plainly(x, n);
+LocalPassResult LocalPass::gather_direct(const Vec3& x, const Vec3& n, double tolerance,
+                                         const Rgb& exact_part) const {
+  if (occlusion_culling_) return gather_by_clusters(x, n, tolerance, exact_part);
+  LocalPassResult result = gather_plainly(x, n);
+  result.irradiance += exact_part;
+  return result;
 }
 
 LocalPassResult LocalPass::gather_plainly(const Vec3& x, const Vec3& n) const {
@@ -203,15 +212,15 @@ LocalPassResult LocalPass::gather_plainly(const Vec3& x, const Vec3& n) const {
   return result;
 }
 
-LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n,
-                                              double tolerance) const {
+LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance,
+                                              const Rgb& exact_part) const {
   LocalPassResult result;
   const std::vector<Cluster>& clusters = clusters_.clusters();
   const std::vector<int> candidates = culling_.candidates(x, n);
   const bool exact_only = !(tolerance > 0);
 
   // The sum H = exact + sum of heap terms + sum of pending terms + gathered, each in its interval.
-  Rgb exact = Rgb::Zero();                           // faces seen whole: Lambert's formula
+  Rgb exact = exact_part;                            // faces seen whole: Lambert's formula
   Rgb heap_lo = Rgb::Zero(), heap_hi = Rgb::Zero();  // clusters not yet refined
   Rgb pending_hi = Rgb::Zero();                      // faces that may be hidden: [0, hi]
   Rgb gathered = Rgb::Zero();                        // the exact gather's total so far

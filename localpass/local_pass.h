@@ -53,6 +53,7 @@
 #include "localpass/cluster_tree.h"
 #include "localpass/method.h"
 #include "localpass/occlusion_culling.h"
+#include "localpass/point_light_visibility.h"
 #include "octree/octree.h"
 #include "scene/scene.h"
 
@@ -123,17 +124,23 @@ class LocalPass {
   /// own over c's unfolded scene (localpass/mirror_images.h), at x unfolded with its normal;
   /// the bounds add with the same weights (each is certified for its own term). With n terms
   /// at x, each is gathered to tolerance / n, so the total still meets the stopping rule.
-  /// Light refracted through transparent polyhedra goes to `refracted`, apart (000 §4: each
-  /// chain of facets x faces the first of, gathered exactly in its unfolded image at the
-  /// centroid angles, localpass/refraction_images.h). Thread-safe.
+  /// Point lights add their direct light exactly (I cos / r^2 through the filters on the
+  /// segment; localpass/point_light_visibility.h), with no width to the bound; their light by way
+  /// of mirrors and refracting objects is not gathered. Light refracted through transparent
+  /// polyhedra goes to `refracted`, apart (000 §4: each chain of facets x faces the first of,
+  /// gathered exactly in its unfolded image at the centroid angles, localpass/refraction_images.h).
+  /// Thread-safe.
   LocalPassResult gather(const Vec3& x, const Vec3& n, double tolerance) const;
 
   const Octree& octree() const { return octree_; }
   int face_count() const { return static_cast<int>(faces_.size()); }
 
  private:
-  LocalPassResult gather_direct(const Vec3& x, const Vec3& n, double tolerance) const;
-  LocalPassResult gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance) const;
+  /// The faces' term plus `exact_part`, known exactly (point lights) the stopping rule counts.
+  LocalPassResult gather_direct(const Vec3& x, const Vec3& n, double tolerance,
+                                const Rgb& exact_part = Rgb::Zero()) const;
+  LocalPassResult gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance,
+                                     const Rgb& exact_part) const;
   /// No culling: every face that can light x radiates in one gather, every face may hide it.
   LocalPassResult gather_plainly(const Vec3& x, const Vec3& n) const;
 
@@ -161,6 +168,8 @@ class LocalPass {
   struct Refracting;
   std::unique_ptr<const Refracting> refracting_;
   void add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& result) const;
+  /// Point lights, decided exactly (localpass/point_light_visibility.h). Null without any.
+  std::unique_ptr<const PointLightVisibility> lights_;
 };
 
 }  // namespace rad

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <random>
 
+#include "scene/point_lights.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -12,6 +13,7 @@ MonteCarloGatherer::MonteCarloGatherer(const Scene& scene, const std::vector<Emi
   faces_scene_.materials = scene.materials;
   faces_scene_.mirror_depth = scene.mirror_depth;
   faces_scene_.refraction_depth = scene.refraction_depth;
+  faces_scene_.lights = scene.lights;
   for (const EmittingFace& f : faces) {
     const Polygon& parent = scene.polygons[f.polygon];
     Polygon p = parent;
@@ -50,7 +52,12 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
           offset_);
     }
   }
-  return sum / static_cast<double>(strata * strata);
+  // Point lights: no ray can hit one, so their direct light is added as it is (I cos / r^2
+  // through the filters between: scene/point_lights.h), with no noise.
+  const Rgb lights = faces_scene_.lights.empty()
+                         ? Rgb::Zero()
+                         : point_light_irradiance(faces_scene_, *caster_, x, n, offset_);
+  return lights + sum / static_cast<double>(strata * strata);
 }
 
 }  // namespace rad

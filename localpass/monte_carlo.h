@@ -5,7 +5,8 @@
 /// cosine-weighted estimator of H = integral of (B / pi) cos theta dw). A ray passes on through
 /// filters (000 §2.2) and reflects off mirrors (000 §3, to the scene's mirror depth), collecting
 /// each surface's front radiosity weighted by what the filters and mirrors before it passed
-/// on, and ends at the first opaque polygon. Seeded per point, so a result does
+/// on, and ends at the first opaque polygon. Point lights, which no ray can hit, add their
+/// direct light as it is (scene/point_lights.h). Seeded per point, so a result does
 /// not depend on the order or the thread it is computed in.
 #include <cstdint>
 #include <memory>

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "scene/point_lights.h"
 #include "scene/polygon.h"
 #include "scene/polygon_faces.h"
 
@@ -56,8 +57,11 @@ Rgb PathTracer::straight_emission(const Vec3& p, const Vec3& normal, std::mt1993
   // M T(p, z) cos_p cos_z A / (pi r^2) estimates the light it sends straight to p, T what the
   // polygons between pass (0 through an opaque one); its back radiates nothing. Weighted by
   // the balance heuristic against the cosine rays (which count the rest of it).
+  // Point lights: their direct light, I cos / r^2 through what lies between (nothing a
+  // cosine ray can hit: a point has no area).
   std::uniform_real_distribution<double> u(0, 1);
-  Rgb h = Rgb::Zero();
+  Rgb h = scene_.lights.empty() ? Rgb::Zero()
+                                : point_light_irradiance(scene_, caster_, p, normal, offset_);
   for (const Emitter& e : emitters_) {
     const double pick = u(rng) * e.area;
     const size_t k = std::min<size_t>(

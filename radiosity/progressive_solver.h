@@ -186,12 +186,15 @@ class ProgressiveSolver {
   /// constant over it, and a linear rise across it is what a point beside it sees.
   void refine_during_shot(int shooter, const Rgb& delta, int shot);
 
-  /// A new child re-gathers everything shot so far, H = sum_j S_j FF(x, patch j), with S_j the
-  /// radiosity patch j has shot. The form factor of a pair does not change between shots, so
-  /// this is exactly what the child would hold had it existed from the start; inheriting the
-  /// parent's value instead would mix form factors taken at two points, which can sum to more
-  /// than 1 (the furnace then overshoots). The change in received power goes through the
-  /// ledger: absorbed, the owning patch's unshot radiosity, and escaped.
+  /// The point lights' one shot (scene/point_lights.h), in the constructor.
+  void shoot_point_lights();
+
+  /// A new child re-gathers everything shot so far (and the point lights' direct light), H = sum_j
+  /// S_j FF(x, patch j), with S_j the radiosity patch j has shot. The form factor of a pair does
+  /// not change between shots, so this is exactly what the child would hold had it existed from the
+  /// start; inheriting the parent's value instead would mix form factors taken at two points, which
+  /// can sum to more than 1 (the furnace then overshoots). The change in received power goes
+  /// through the ledger: absorbed, the owning patch's unshot radiosity, and escaped.
   void regather(const std::vector<int>& children);
 
   const Scene& scene_;

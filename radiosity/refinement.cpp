@@ -135,6 +135,9 @@ void ProgressiveSolver::regather(const std::vector<int>& children) {
     const Element& el = elements()[children[k]];
     if (buried_[children[k]]) return;  // receives nothing
     const bool at_back = absorbs_at_back(el.polygon);
+    const Vec3& n = solution_.patches[el.patch].normal;
+    gathered[k] = rays_.point_light_irradiance(el.centroid, n);  // the lights' one shot
+    if (at_back) back[k] = rays_.point_light_irradiance(el.centroid, -n);
     for (size_t j = 0; j < solution_.patches.size(); ++j) {
       const Patch& p = solution_.patches[j];
       if (p.shot == Rgb::Zero()) continue;

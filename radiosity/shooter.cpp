@@ -8,6 +8,7 @@
 #include "geometry/lambert.h"
 #include "geometry/plane.h"
 #include "radiosity/random_stream.h"
+#include "scene/point_lights.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -53,6 +54,11 @@ Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double
   in_plane_ = scene.tolerance().in_plane;
   pieces_ = mirror_pieces(scene);
   chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
+}
+
+Rgb Shooter::point_light_irradiance(const Vec3& x, const Vec3& n) const {
+  if (caster_.scene().lights.empty()) return Rgb::Zero();
+  return rad::point_light_irradiance(caster_.scene(), caster_, x, n, epsilon_);
 }
 
 Rgb Shooter::visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,

@@ -39,6 +39,10 @@ class Shooter {
   Rgb visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                           uint64_t key, int fewer = 1) const;
 
+  /// The irradiance at x (unit normal n) straight from the scene's point lights
+  /// (scene/point_lights.h), the shadow rays offset by epsilon like the patches'.
+  Rgb point_light_irradiance(const Vec3& x, const Vec3& n) const;
+
   /// True when the point x (normal n) lies inside a closed object: every probe ray from just
   /// above it meets the back of a polygon. Such points (a floor under a block standing on it)
   /// neither receive nor radiate.

@@ -24,7 +24,7 @@ double reference_radiosity(const Scene& scene) {
   Rgb rho_area = Rgb::Zero();
   for (const Polygon& p : scene.polygons)
     rho_area += scene.materials[p.material].reflectance * p.area;
-  const Rgb power = scene.emitted_power();
+  const Rgb power = scene.emitted_power() + scene.light_power();
   double reference = 0;
   for (int c = 0; c < 3; ++c) {
     reference = std::max(reference, power[c] / area / (1 - rho_area[c] / area));
@@ -64,6 +64,44 @@ ProgressiveSolver::ProgressiveSolver(const RayCaster& caster, const SolverSettin
   for (size_t e = 0; e < elements().size(); ++e)
     leaf_unshot_[e] = buried_[e] ? Rgb::Zero() : material(elements()[e].polygon).emission;
   leaves_ = solution_.leaves();
+  if (!scene_.lights.empty()) shoot_point_lights();
+}
+
+void ProgressiveSolver::shoot_point_lights() {
+  // The lights shoot once, first: each leaf takes in their direct light at its centroid (as
+  // from a patch's shot), and reflects it on as unshot radiosity. A light has no area, so it
+  // never shoots again (new children re-gather it: regather). The ledger: what reaches no
+  // element (past the scene, the backs of opaque polygons, mirrors' specular part, refracting
+  // objects) escapes.
+  const Rgb power = scene_.light_power();
+  stats().emitted += power;
+  std::vector<Rgb> front(elements().size(), Rgb::Zero()), back(elements().size(), Rgb::Zero());
+  tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) {
+    const int e = leaves_[k];
+    if (buried_[e]) return;
+    const Element& el = elements()[e];
+    const Vec3& n = solution_.patches[el.patch].normal;
+    front[e] = rays_.point_light_irradiance(el.centroid, n);
+    if (absorbs_at_back(el.polygon)) back[e] = rays_.point_light_irradiance(el.centroid, -n);
+  });
+  back_irradiance_.resize(elements().size(), Rgb::Zero());
+  Rgb kept = Rgb::Zero();
+  for (const int e : leaves_) {  // in index order: the sums do not depend on the threads
+    Element& el = elements()[e];
+    const Rgb rho = material(el.polygon).reflectance;
+    const Rgb stay = stays(el.polygon);
+    const Rgb reflected = rho.cwiseProduct(front[e]);
+    el.irradiance += front[e];
+    el.radiosity += reflected;
+    leaf_unshot_[e] += reflected;
+    patches()[el.patch].unshot += reflected * (el.area / live_area_[el.patch]);
+    stats().absorbed += (stay - rho).cwiseProduct(front[e]) * el.area;
+    kept += stay.cwiseProduct(front[e]) * el.area;
+    back_irradiance_[e] = back[e];
+    stats().absorbed += stay.cwiseProduct(back[e]) * el.area;
+    kept += stay.cwiseProduct(back[e]) * el.area;
+  }
+  stats().escaped += power - kept;
 }
 
 void ProgressiveSolver::shoot_until_converged(

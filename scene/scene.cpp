@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 
 namespace rad {
 
@@ -38,6 +39,12 @@ Rgb Scene::emitted_power() const {
   return power;
 }
 
+Rgb Scene::light_power() const {
+  Rgb power = Rgb::Zero();
+  for (const PointLight& light : lights) power += 4 * std::numbers::pi * light.intensity;
+  return power;
+}
+
 int Scene::emitter_count() const {
   int count = 0;
   for (const Polygon& p : polygons) count += materials[p.material].is_emitter() ? 1 : 0;
@@ -67,6 +74,10 @@ std::string Scene::fingerprint() const {
       const char fresnel = r.fresnel;
       add(&fresnel, 1);
     }
+  }
+  for (const PointLight& light : lights) {  // none: the fingerprint of before lights existed
+    add(light.position.data(), 3 * sizeof(double));
+    add(light.intensity.data(), 3 * sizeof(double));
   }
   if (mirror_depth != kDefaultMirrorDepth) add(&mirror_depth, sizeof(mirror_depth));
   if (refraction_depth != kDefaultRefractionDepth) add(&refraction_depth, sizeof(refraction_depth));

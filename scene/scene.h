@@ -15,6 +15,7 @@
 #include "geometry/tolerance.h"
 #include "scene/camera.h"
 #include "scene/material.h"
+#include "scene/point_light.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -43,6 +44,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<SceneObject> objects;
   std::vector<Polygon> polygons;
+  std::vector<PointLight> lights;  ///< "lights" in the file: isotropic point lights
   std::optional<CameraSpec> camera;
   /// Longest chain of plane-mirror reflections the solver, the local pass and the eye follow
   /// (000 §3; "mirror_depth" in the file, 0 to 8).
@@ -63,6 +65,8 @@ struct Scene {
   double total_area() const;
   /// Sum of emission * area over polygons: emitted power in W when lengths are metres.
   Rgb emitted_power() const;
+  /// Sum of 4 pi intensity over the point lights: their power in W.
+  Rgb light_power() const;
   int emitter_count() const;
   int vertex_count() const;
   /// 64-bit FNV-1a hash (16 hex digits) of every polygon's vertices and material values: a

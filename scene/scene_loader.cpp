@@ -257,6 +257,34 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
   return m;
 }
 
+/// "lights": a list of isotropic point lights, {"position": [x, y, z], "intensity": [r, g, b]}.
+/// A light inside a closed object is allowed (it lights nothing outside it).
+std::vector<PointLight> read_lights(const Reader& in, const Json& j) {
+  if (!j.is_array()) in.fail("lights", "expected a list of point lights");
+  if (static_cast<long long>(j.size()) > limits::kPolygons)
+    in.fail("lights", "more than " + std::to_string(limits::kPolygons) + " lights");
+  std::vector<PointLight> lights;
+  for (size_t i = 0; i < j.size(); ++i) {
+    const std::string where = "lights[" + std::to_string(i) + "]";
+    in.require_object(j[i], where, {"position", "intensity"});
+    for (const char* key : {"position", "intensity"}) {
+      if (!j[i].contains(key)) in.fail(where, std::string("missing \"") + key + "\"");
+    }
+    PointLight light;
+    light.position = in.vec3(j[i]["position"], where + ".position");
+    light.intensity = in.rgb(j[i]["intensity"], where + ".intensity");
+    for (int c = 0; c < 3; ++c) {
+      if (light.intensity[c] < 0) {
+        std::ostringstream msg;
+        msg << "intensity[" << c << "] = " << light.intensity[c] << " is negative";
+        in.fail(where, msg.str());
+      }
+    }
+    lights.push_back(light);
+  }
+  return lights;
+}
+
 CameraSpec read_camera(const Reader& in, const Json& j) {
   in.require_object(j, "camera", {"eye", "look_at", "up", "fov_deg", "width", "height"});
   CameraSpec spec;
@@ -338,8 +366,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
 
   Scene scene;
   scene.path = file;
-  in.require_object(root, "top level",
-                    {"materials", "objects", "camera", "mirror_depth", "refraction_depth"});
+  in.require_object(
+      root, "top level",
+      {"materials", "objects", "lights", "camera", "mirror_depth", "refraction_depth"});
   for (const auto& [key, depth, what] :
        {std::tuple{"mirror_depth", &scene.mirror_depth, "reflections followed"},
         {"refraction_depth", &scene.refraction_depth, "refracting interfaces crossed"}}) {
@@ -446,6 +475,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
   }
   if (scene.polygons.empty()) in.fail("objects", "the scene has no polygons");
 
+  if (root.contains("lights")) scene.lights = read_lights(in, root["lights"]);
   if (root.contains("camera")) scene.camera = read_camera(in, root["camera"]);
   return scene;
 }

@@ -50,6 +50,9 @@ inline const std::vector<BadSceneCase>& bad_scene_cases() {
       {"wrong_type.json", "objects[0] polygon 0 vertex 2", "expected [x, y, z]"},
       {"mesh_and_polygons.json", "objects[0]", "exactly one of \"mesh\" or \"polygons\""},
       {"no_objects.json", "top level", "missing \"objects\""},
+      {"nan_light_position.json", "lights[1].position[1]", "not a finite number (NaN)"},
+      {"negative_light_intensity.json", "lights[0]", "intensity[1] = -2 is negative"},
+      {"light_without_intensity.json", "lights[0]", "missing \"intensity\""},
       {"does_not_exist.json", "does_not_exist.json", "cannot open scene file"},
   };
   return cases;

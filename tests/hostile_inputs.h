@@ -54,7 +54,7 @@ inline const std::vector<HostileInput>& hostile_inputs() {
       {"object without material", "info {h}/missing_material_key.json", "objects[0]",
        "missing \"material\""},
       {"unknown top-level key", "info {h}/unknown_top_key.json", "top level",
-       "unknown key \"lights\""},
+       "unknown key \"sun\""},
       {"polygon of 100,001 vertices", "info {g}/many_vertices.json", "polygon 0",
        "more than 100000"},
       {"scene file over 256 MiB", "info {g}/huge.json", "huge.json",

@@ -170,6 +170,30 @@ TEST(SceneLoader, ReadsRefraction) {
   EXPECT_THROW(glass_cube(R"({"ior": 1.5, "transmittance": 0.9, "reflectance": 0.2})"), InputError);
 }
 
+TEST(SceneLoader, ReadsPointLights) {
+  // Issue 20: top-level "lights", isotropic, intensity in W/sr (one number for a grey); a
+  // light inside a closed object is allowed; the lights enter the fingerprint and the power.
+  const std::string floor =
+      R"("materials": {"white": {}}, "objects": [{"material": "white", "polygons": )"
+      R"([[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]]}])";
+  const Scene none = parse_scene("{" + floor + "}", "none.json");
+  EXPECT_TRUE(none.lights.empty());
+  const Scene two = parse_scene("{" + floor +
+                                    R"(, "lights": [{"position": [0.5, 0.5, 1], "intensity": 2},)"
+                                    R"( {"position": [0, 0, -1], "intensity": [1, 0, 3]}]})",
+                                "two.json");
+  ASSERT_EQ(two.lights.size(), 2u);
+  EXPECT_EQ(two.lights[0].position, Vec3(0.5, 0.5, 1));
+  EXPECT_EQ(two.lights[0].intensity, Rgb::Constant(2));
+  EXPECT_EQ(two.lights[1].intensity, Rgb(1, 0, 3));
+  const Rgb power = two.light_power();
+  EXPECT_NEAR(power[0], 4 * std::numbers::pi * 3, 1e-12);
+  EXPECT_NEAR(power[1], 4 * std::numbers::pi * 2, 1e-12);
+  EXPECT_NE(two.fingerprint(), none.fingerprint()) << "a solution lit by lights is another";
+  EXPECT_THROW(parse_scene("{" + floor + R"(, "lights": {"position": [0, 0, 1]}})", "x.json"),
+               InputError);
+}
+
 TEST(SceneLoader, WarnsOfARefractingObjectThatIsNotClosedOrFacesIn) {
   const Scene open = glass_cube(R"({"ior": 1.5})", 5);
   ASSERT_EQ(open.warnings.size(), 1u);

@@ -1,0 +1,20 @@
+#pragma once
+/// What reaches a point straight from the scene's point lights (scene/point_light.h): one
+/// segment per light, through the filters on it (000 §2.2), stopped by anything opaque. The
+/// path tracer and the solver take direct point light from here; the local pass decides the
+/// same exactly (localpass/point_light_visibility.h).
+#include "scene/ray_caster.h"
+
+namespace rad {
+
+/// Sum over the scene's lights of I max(0, n . w) / r^2 times what the polygons on the segment
+/// from x to the light pass. The segment leaves x's surface as every ray of the scene does:
+/// from `offset` along n and half that back along the segment (so a polygon through x, seen
+/// edge-on, hides nothing, as for the exact gatherers), and stops `offset` short of the light
+/// (a light lying on a polygon is not hidden by it). Visibility is Embree's (single precision,
+/// distances refined in double): exact but for points within float rounding (~1e-7 of the
+/// distance) of a shadow's edge, where the irradiance jumps.
+Rgb point_light_irradiance(const Scene& scene, const RayCaster& caster, const Vec3& x,
+                           const Vec3& n, double offset);
+
+}  // namespace rad
