@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
       std::printf("\n## %s (%zu floor points; the model reference's standard error %.2f%%)\n\n",
                   label.c_str(), points.size(), noise);
       std::printf(
-          "| --refraction-tolerance | seconds | x opaque | images gathered | RMS error vs the model "
+          "| --refraction-tolerance | seconds | x opaque | images gathered | RMS error vs the "
+          "model "
           "(%%) | RMS error vs the physics (%%) |\n|---|---|---|---|---|---|\n");
       rad::ChartSeries knob_series{label, {}, {}}, cost_series{label, {}, {}};
       double opaque_seconds = 0;
@@ -149,12 +150,11 @@ int main(int argc, char** argv) {
         long total_images = 0;
         for (const int n : images) total_images += n;
         const double error = rms_error(value, model.value);
-        const std::string row = knob == opaque            ? "opaque (refraction off)"
+        const std::string row = knob == opaque        ? "opaque (refraction off)"
                                 : std::isfinite(knob) ? std::to_string(knob).substr(0, 4)
                                                       : "none (the paper)";
         std::printf("| %s | %.3g | %.3g | %ld | %.2f | %.2f |\n", row.c_str(), seconds,
-                    seconds / opaque_seconds, total_images, error,
-                    rms_error(value, physics.value));
+                    seconds / opaque_seconds, total_images, error, rms_error(value, physics.value));
         if (knob == opaque) continue;  // not a setting of the knob: no point on the charts
         knob_series.x.push_back(std::isfinite(knob) ? knob : 2.0);
         knob_series.y.push_back(error);
