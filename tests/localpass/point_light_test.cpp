@@ -82,8 +82,8 @@ TEST(PointLight, ASquareCastsItsShadowWhereSimilarTrianglesPutIt) {
   // A filter passes its transmittance of it (000 §2.2), per channel.
   const Rgb pane(0.2, 0.5, 0.8);
   const Scene filter = floor_scene(true, pane);
-  expect_near(gather(filter, 0.1, 0.1).irradiance, pane.cwiseProduct(closed_form(0.1, 0.1)),
-              1e-12, "through the filter");
+  expect_near(gather(filter, 0.1, 0.1).irradiance, pane.cwiseProduct(closed_form(0.1, 0.1)), 1e-12,
+              "through the filter");
   expect_near(gather(filter, 2, 0).irradiance, closed_form(2, 0), 1e-12, "beside it");
 }
 
@@ -137,7 +137,8 @@ TEST(PointLight, OnlyTheCullingsCandidatesAreAskedAndTheyAreEnough) {
       EXPECT_LE((rays - plain).cwiseAbs().maxCoeff(), scale)
           << "seed " << seed << " at " << site.x.transpose();
       Rgb unoccluded = Rgb::Zero();
-      for (const PointLight& l : scene.lights) unoccluded += l.unoccluded_irradiance(site.x, site.n);
+      for (const PointLight& l : scene.lights)
+        unoccluded += l.unoccluded_irradiance(site.x, site.n);
       lit += plain.maxCoeff() > 0;
       shadowed += (plain.array() < unoccluded.array() * (1 - 1e-9)).any();
     }
