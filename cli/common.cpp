@@ -159,6 +159,25 @@ void add_refraction_options(CLI::App* sub, LocalPassSettings* settings) {
       ->capture_default_str();
 }
 
+void add_glossy_options(CLI::App* sub, LocalPassSettings* settings) {
+  sub->add_option("--glossy-split", settings->glossy.split,
+                  "Glossy materials (\"gloss\"): split each scatterer triangle into N x N pieces, "
+                  "one beam each per source (paper 003's model is good when a piece subtends a "
+                  "small angle against the lobe's spread)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  sub->add_option("--glossy-light-split", settings->glossy.light_split,
+                  "Glossy materials: split each emitting triangle into N x N point sources for "
+                  "glossy transfer (point lights are used as they are)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  sub->add_option("--glossy-cutoff", settings->glossy.cutoff,
+                  "Glossy materials: a beam reaches only receivers within this many lobe spreads "
+                  "(sigma) of its directions (the hierarchy's cut)")
+      ->check(CLI::Range(1.0, 1e9))
+      ->capture_default_str();
+}
+
 void add_samples_option(CLI::App* sub, int* samples, const std::string& unit) {
   sub->add_option("--samples", *samples,
                   "montecarlo: rays per " + unit + " (rounded up to a square)")

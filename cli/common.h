@@ -22,6 +22,8 @@ void add_samples_option(CLI::App* sub, int* samples, const std::string& unit);
 /// --refraction-tolerance and --refraction-pieces, the refraction heuristic's accuracy knob
 /// (LocalPassSettings; 000 §4): stored into `settings`.
 void add_refraction_options(CLI::App* sub, LocalPassSettings* settings);
+/// --glossy-split, --glossy-light-split, --glossy-cutoff (paper 003's beams).
+void add_glossy_options(CLI::App* sub, LocalPassSettings* settings);
 
 /// -s,--solution (a .vtp from `radiosity solve`); `detail` is appended to the help text.
 CLI::Option* add_solution_option(CLI::App* sub, std::string* solution,

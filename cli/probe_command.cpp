@@ -90,6 +90,11 @@ void run_probe(const ProbeOptions& o) {
     refracts = refracts || scene.materials[p.material].refracts();
   refracts = refracts && scene.refraction_depth > 0;
   std::vector<Rgb> refracted(refracts ? points.size() : 0, Rgb::Zero());
+  // 003: light from point sources by way of glossy surfaces, the other heuristic part.
+  bool glossy = false;
+  for (const Polygon& p : scene.polygons)
+    glossy = glossy || scene.materials[p.material].is_glossy();
+  std::vector<Rgb> glossy_part(glossy ? points.size() : 0, Rgb::Zero());
   std::function<void(size_t)> gather;
   // The path tracer of the scene itself: no solution, every bounce sampled.
   std::optional<PathTracer> path_tracer;
@@ -130,21 +135,24 @@ void run_probe(const ProbeOptions& o) {
         irradiance[i] = r.irradiance;
         bound[i] = r.bound.maxCoeff();
         if (refracts) refracted[i] = r.refracted;
+        if (glossy) glossy_part[i] = r.glossy;
       };
     }
   } else {
     // Both exact methods see the same faces (the polygons, concave ones as triangles). With
-    // mirrors or refraction, the local pass at tolerance 0 (it unfolds them: localpass/
-    // mirror_images.h, refraction_images.h).
+    // mirrors, refraction, point lights or glossy surfaces, the local pass at tolerance 0 (it
+    // unfolds mirrors and refraction: localpass/mirror_images.h, refraction_images.h; adds the
+    // lights and the glossy beams).
     bool mirrors = false;
     for (const Polygon& p : scene.polygons)
       mirrors = mirrors || scene.materials[p.material].is_mirror();
-    if ((mirrors && scene.mirror_depth > 0) || refracts) {
+    if ((mirrors && scene.mirror_depth > 0) || refracts || glossy || !scene.lights.empty()) {
       pass.emplace(scene, faces_from_polygons(scene), method, o.settings);
       gather = [&](size_t i) {
         const LocalPassResult r = pass->gather(points[i].x, points[i].n, 0);
         irradiance[i] = r.irradiance;
         if (refracts) refracted[i] = r.refracted;
+        if (glossy) glossy_part[i] = r.glossy;
       };
     } else {
       direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
@@ -169,7 +177,10 @@ void run_probe(const ProbeOptions& o) {
 
   const std::vector<Rgb>* errors = path_tracer ? &standard_error : nullptr;
   // The path tracer follows refraction exactly: its E is the whole. Monte Carlo's rays too.
-  const std::vector<Rgb>* apart = refracts && pass ? &refracted : nullptr;
+  std::vector<ApartColumns> apart;
+  if (refracts && pass) apart.push_back({"refracted", &refracted});
+  // The path tracer follows glossy lobes itself; Monte Carlo takes glossy surfaces as mirrors.
+  if (glossy && pass) apart.push_back({"glossy", &glossy_part});
   if (o.output.empty()) {
     write_probe_csv(std::cout, points, irradiance, bound, errors, apart);
   } else {
@@ -214,7 +225,10 @@ void add_probe_command(CLI::App& app, Run& run) {
       "the\n"
       "apparent-depth heuristic of paper 000 section 4, NOT in E and NOT covered by the bound (the "
       "total\n"
-      "is E + refracted). The path tracer and Monte Carlo follow refraction exactly, in E.");
+      "is E + refracted). The path tracer and Monte Carlo follow refraction exactly, in E. With\n"
+      "glossy materials (\"gloss\"), three more: glossy_r,glossy_g,glossy_b, the light of point\n"
+      "sources reflected by them onto the point (paper 003's beams), also NOT in E and NOT\n"
+      "covered by the bound; the path tracer follows the lobes itself, in E.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
   sub->add_option("-p,--points", o->points,
                   "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")
@@ -231,6 +245,7 @@ void add_probe_command(CLI::App& app, Run& run) {
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");
   add_refraction_options(sub, &o->settings);
+  add_glossy_options(sub, &o->settings);
   sub->add_flag("--no-interface-reflections", o->no_interface_reflections,
                 "pathtrace: drop the light refracting interfaces reflect (Fresnel, total internal "
                 "reflection), the model of the local pass's refraction heuristic (paper 000 "

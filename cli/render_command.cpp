@@ -85,19 +85,18 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& i
   out["bound"] = {{"relative_mean", summary.relative_bound_mean},
                   {"relative_max", summary.relative_bound_max},
                   {"max", summary.bound_max}};
-  // 000 §4: the heuristic part, apart from the bound (which covers the rest).
-  size_t refracted_pixels = 0;
-  double refracted_sum = 0, total_sum = 0;
-  for (size_t i = 0; i < image.refracted.pixels.size(); ++i) {
-    const double r = image.refracted.pixels[i].sum();
-    refracted_pixels += r > 0;
-    refracted_sum += r;
-    total_sum += image.radiosity.pixels[i].sum();
-  }
-  if (refracted_pixels > 0) {
-    out["refracted"] = {{"pixels", refracted_pixels},
-                        {"share_of_light", total_sum > 0 ? refracted_sum / total_sum : 0.0},
-                        {"certified", false}};
+  // The heuristic parts (000 §4's refraction, 003's glossy beams), apart from the bound (which
+  // covers the rest).
+  double total_sum = 0;
+  for (const Rgb& b : image.radiosity.pixels) total_sum += b.sum();
+  for (const auto& [name, part] : image.heuristic_parts()) {
+    size_t pixels = 0;
+    double sum = 0;
+    for (const Rgb& r : part->pixels) pixels += r.sum() > 0, sum += r.sum();
+    if (pixels == 0) continue;
+    out[name] = {{"pixels", pixels},
+                 {"share_of_light", total_sum > 0 ? sum / total_sum : 0.0},
+                 {"certified", false}};
   }
   return out;
 }
@@ -125,18 +124,21 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   auto& relative = out.channels["relative_bound"];
   bound.resize(n);
   relative.resize(n);
-  bool refracts = false;
-  for (const Rgb& r : image.refracted.pixels) refracts = refracts || r != Rgb::Zero();
-  std::vector<float>* refracted = refracts ? &out.channels["refracted"] : nullptr;
-  if (refracted) refracted->resize(n);
   for (size_t i = 0; i < n; ++i) {
-    // The bound covers the certified part alone: B less what refraction added (000 §4).
-    const Rgb& r = image.refracted.pixels[i];
+    // The bound covers the certified part alone: B less the heuristic parts (000 §4, 003).
     const double b = image.bound.pixels[i].maxCoeff();
-    const double value = (image.radiosity.pixels[i] - r).maxCoeff();
+    const double value = image.certified_part(i).maxCoeff();
     bound[i] = static_cast<float>(b);
     relative[i] = value > 0 ? static_cast<float>(b / value) : 0.0f;
-    if (refracted) (*refracted)[i] = static_cast<float>(r.maxCoeff());
+  }
+  // Each heuristic part that lights anything, as a channel of its own (largest channel).
+  for (const auto& [name, part] : image.heuristic_parts()) {
+    bool any = false;
+    for (const Rgb& r : part->pixels) any = any || r != Rgb::Zero();
+    if (!any) continue;
+    std::vector<float>& channel = out.channels[name];
+    channel.resize(n);
+    for (size_t i = 0; i < n; ++i) channel[i] = static_cast<float>(part->pixels[i].maxCoeff());
   }
   return out;
 }
@@ -284,6 +286,7 @@ void add_render_command(CLI::App& app, Run& run) {
       ->check(CLI::IsMember(render_method_names()))
       ->capture_default_str();
   add_refraction_options(sub, &o->settings);
+  add_glossy_options(sub, &o->settings);
   add_tolerance_option(
       sub, &o->tolerance,
       "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "

@@ -78,9 +78,12 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
 
 void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
                      const std::vector<Rgb>& irradiance, const std::vector<double>& bound,
-                     const std::vector<Rgb>* standard_error, const std::vector<Rgb>* refracted) {
-  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound" << (standard_error ? ",se_r,se_g,se_b" : "")
-      << (refracted ? ",refracted_r,refracted_g,refracted_b" : "") << "\n";
+                     const std::vector<Rgb>* standard_error,
+                     const std::vector<ApartColumns>& apart) {
+  out << "x,y,z,nx,ny,nz,E_r,E_g,E_b,bound" << (standard_error ? ",se_r,se_g,se_b" : "");
+  for (const ApartColumns& a : apart)
+    out << "," << a.name << "_r," << a.name << "_g," << a.name << "_b";
+  out << "\n";
   std::string row;
   for (size_t i = 0; i < points.size(); ++i) {
     const ProbePoint& p = points[i];
@@ -92,8 +95,8 @@ void write_probe_csv(std::ostream& out, const std::vector<ProbePoint>& points,
       const Rgb& se = (*standard_error)[i];
       values.insert(values.end(), {se.x(), se.y(), se.z()});
     }
-    if (refracted) {
-      const Rgb& r = (*refracted)[i];
+    for (const ApartColumns& a : apart) {
+      const Rgb& r = (*a.values)[i];
       values.insert(values.end(), {r.x(), r.y(), r.z()});
     }
     for (const double v : values) {

@@ -179,8 +179,7 @@ Rgb GlossyBeam::irradiance(const Vec3& f, const Vec3& n) const {
   // than the lobe's peak density over the squared height above the triangle's plane (a bound
   // of the physics, which the facets pass near a focus).
   const double peak = gaussian_lobe(0, sigma_);
-  const double density =
-      v.flux_area < 1e-12 * d2 ? peak / d2 : std::min(v.p_e, 1.0) / v.flux_area;
+  const double density = v.flux_area < 1e-12 * d2 ? peak / d2 : std::min(v.p_e, 1.0) / v.flux_area;
   const double height = face_normal_.dot(f - triangle_.vertex[0]);
   return flux_ * (cos_theta * std::min(density, peak / (height * height)));
 }

@@ -101,6 +101,8 @@ class GlossyBeam {
   /// The lobe's centre direction for light arriving at point p of the triangle with
   /// barycentric weights w (the normal interpolated and normalised).
   Vec3 scattered(const Vec3& p, const std::array<double, 3>& w) const;
+  /// The unit mean of the vertices' scattered directions (the flux planes' normal).
+  const Vec3& mean_direction() const { return mean_direction_; }
   const GlossyTriangle& triangle() const { return triangle_; }
   double sigma() const { return sigma_; }
   const Vec3& light() const { return light_; }

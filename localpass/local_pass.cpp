@@ -80,10 +80,19 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   in_plane_ = tolerance_.in_plane;
   mirror_culling_ = settings.mirror_culling;
   if (!scene.lights.empty()) lights_ = std::make_unique<PointLightVisibility>(scene);
-  const std::vector<MirrorPiece> pieces = mirror_pieces(scene);
+  if (settings.glossy_transfer) {
+    auto glossy = std::make_unique<GlossyTransfer>(scene, settings.glossy);
+    if (!glossy->empty()) glossy_ = std::move(glossy);
+  }
+  // Glossy surfaces are no plane mirrors to the local pass: their light comes by beams.
+  std::vector<MirrorPiece> pieces = mirror_pieces(scene);
+  std::erase_if(pieces, [&](const MirrorPiece& piece) {
+    return scene.materials[scene.polygons[piece.polygon].material].is_glossy();
+  });
   LocalPassSettings unfolded = settings;
-  unfolded.mirror_depth = 0;      // an unfolded scene has no mirrors (images never reflect)
-  unfolded.refraction_depth = 0;  // refraction is gathered at the real receiver only
+  unfolded.mirror_depth = 0;         // an unfolded scene has no mirrors (images never reflect)
+  unfolded.refraction_depth = 0;     // refraction is gathered at the real receiver only
+  unfolded.glossy_transfer = false;  // nor glossy transfer
   const int depth = settings.mirror_depth.value_or(scene.mirror_depth);
   for (const std::vector<int>& chain : mirror_chains(pieces, depth, in_plane_)) {
     auto m = std::make_unique<Mirror>();
@@ -187,6 +196,11 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
     ++result.mirrored;
   }
   if (refracting_) add_refracted(x, n, result);
+  if (glossy_) {
+    const GlossyTransfer::Result g = glossy_->irradiance(x, n);
+    result.glossy = g.irradiance;
+    result.glossy_beams = g.beams;
+  }
   return result;
 }
 

@@ -51,6 +51,7 @@
 #include "geometry/exact_gatherer.h"
 #include "geometry/tolerance.h"
 #include "localpass/cluster_tree.h"
+#include "localpass/glossy_transfer.h"
 #include "localpass/method.h"
 #include "localpass/occlusion_culling.h"
 #include "localpass/point_light_visibility.h"
@@ -80,6 +81,10 @@ struct LocalPassSettings {
   /// Skip paths whose later facets' images lie outside the earlier ones' (000 §5's beams); false:
   /// every path (the same values).
   bool refraction_culling = true;
+  /// Glossy transfer (paper 003, localpass/glossy_transfer.h): the scatterers' and emitters'
+  /// splits and the hierarchy's cut. `glossy_transfer` false leaves it out.
+  GlossySettings glossy;
+  bool glossy_transfer = true;
   /// Culling beams (000 §5): skip a mirror at points that cannot see anything radiating
   /// through it. false: every mirror at every point in front of it (the same values).
   bool mirror_culling = true;
@@ -104,6 +109,10 @@ struct LocalPassResult {
   /// covered by `bound`, and not in `irradiance`. The total is irradiance + refracted.
   Rgb refracted = Rgb::Zero();
   int refracted_images = 0;  ///< Exact gathers of refracted images (localpass/refraction_images.h)
+  /// H(x) from point sources reflected by glossy surfaces (003's beams): NOT covered by
+  /// `bound`, and not in `irradiance`. The total is irradiance + refracted + glossy.
+  Rgb glossy = Rgb::Zero();
+  int glossy_beams = 0;  ///< Beams evaluated (localpass/glossy_transfer.h)
 };
 
 /// The octree's items: one per face, with its polygon's normal and its exitance.
@@ -168,6 +177,8 @@ class LocalPass {
   struct Refracting;
   std::unique_ptr<const Refracting> refracting_;
   void add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& result) const;
+  /// Glossy transfer (003). Null without glossy surfaces lit by something.
+  std::unique_ptr<const GlossyTransfer> glossy_;
   /// Point lights, decided exactly (localpass/point_light_visibility.h). Null without any.
   std::unique_ptr<const PointLightVisibility> lights_;
 };

@@ -8,8 +8,7 @@ PointLightVisibility::PointLightVisibility(const Scene& scene)
     : scene_(scene), in_plane_(scene.tolerance().in_plane) {
   planes_.reserve(scene.polygons.size());
   for (const Polygon& p : scene.polygons) {
-    Plane plane{PlaneFrame(p.vertices.front(), p.normal), p.normal.dot(p.vertices.front()), {},
-                {}};
+    Plane plane{PlaneFrame(p.vertices.front(), p.normal), p.normal.dot(p.vertices.front()), {}, {}};
     for (const Vec3& vertex : p.vertices) plane.outline.push_back(plane.frame.to_2d(vertex));
     // A refracting interface is opaque to straight lines (scene/material.h): transmittance 0.
     plane.transmittance = scene.materials[p.material].transmittance;

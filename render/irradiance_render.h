@@ -4,6 +4,7 @@
 /// error-bounded local pass (exact, with a certified bound) or from the Monte Carlo baseline,
 /// and what each pixel cost.
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "formats/image.h"
@@ -22,6 +23,9 @@ struct IrradianceImage {
   /// Of `radiosity`, the part refracted through transparent polyhedra by the heuristic of 000 §4
   /// (w rho H_refracted): not covered by `bound`, which bounds radiosity - refracted.
   Image refracted;
+  /// Of `radiosity`, the part from point sources by way of glossy surfaces (003's beams, w rho
+  /// H_glossy): not covered by `bound` either.
+  Image glossy;
   Image bound;  ///< Sum of w rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
   /// Per pixel: faces gathered exactly (0 at misses, back sides, Monte Carlo; summed over the
   /// surfaces seen through filters, as the next two)
@@ -30,6 +34,15 @@ struct IrradianceImage {
   std::vector<int> clusters;   ///< Per pixel: cluster intervals computed (localpass/cluster_tree.h)
   std::vector<char> surface;   ///< Per pixel: 1 where a front-facing surface was gathered
   int samples_per_pixel = 0;   ///< Monte Carlo: rays per pixel; 0 for the exact local pass
+
+  /// The heuristic parts by name ("refracted", "glossy"), each apart from the bound.
+  std::vector<std::pair<const char*, const Image*>> heuristic_parts() const {
+    return {{"refracted", &refracted}, {"glossy", &glossy}};
+  }
+  /// The part of pixel i's B that `bound` covers: B less the heuristic parts.
+  Rgb certified_part(size_t i) const {
+    return radiosity.pixels[i] - refracted.pixels[i] - glossy.pixels[i];
+  }
 };
 
 /// Per-pixel counts and bounds summed up over the pixels where a surface was gathered (the

@@ -34,6 +34,12 @@ struct Material {
   Rgb transmittance{0, 0, 0};
   /// Plane-mirror reflectance of the front side (000 §3). 0: no mirror.
   Rgb specular{0, 0, 0};
+  /// The spread sigma (radians) of the normalised Gaussian lobe about the mirror direction
+  /// that `specular` scatters into (paper 003: a glossy reflector; "gloss" in the file). 0: a
+  /// perfect mirror. The solver and the eye rays take a glossy surface as the mirror of its
+  /// lobe's centre; the local pass gathers its light from point lights by glossy beams
+  /// (localpass/glossy_transfer.h), apart from the certified part.
+  double gloss = 0;
   /// Set for the interface of a refracting polyhedron ("ior" in the file; 000 §4). Its
   /// `transmittance` above stays 0: a refracting polygon is no filter.
   std::optional<Refraction> refraction{};
@@ -41,8 +47,10 @@ struct Material {
   bool is_emitter() const { return (emission.array() > 0).any(); }
   /// True when some channel passes light through (the polygon is not a full occluder).
   bool is_filter() const { return (transmittance.array() > 0).any(); }
-  /// True when some channel reflects specularly.
+  /// True when some channel reflects specularly (sharply or glossily).
   bool is_mirror() const { return (specular.array() > 0).any(); }
+  /// True for a glossy reflector: specular with a lobe of spread gloss > 0.
+  bool is_glossy() const { return gloss > 0 && is_mirror(); }
   /// True for the interface of a refracting polyhedron.
   bool refracts() const { return refraction.has_value(); }
 };

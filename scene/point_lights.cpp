@@ -13,8 +13,8 @@ Rgb point_light_irradiance(const Scene& scene, const RayCaster& caster, const Ve
     const Vec3 origin = x + offset * n - 0.5 * offset * w;
     const Vec3 leg = light.position - origin;
     const double distance = leg.norm();
-    const Rgb passed = caster.transmittance({origin, leg / distance}, 1.5 * offset,
-                                            distance - offset, offset);
+    const Rgb passed =
+        caster.transmittance({origin, leg / distance}, 1.5 * offset, distance - offset, offset);
     h += unoccluded.cwiseProduct(passed);
   }
   return h;

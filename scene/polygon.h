@@ -24,6 +24,10 @@ struct Polygon {
   int object = -1;             ///< Index of the object in the scene file ("objects[i]").
   int source_index = -1;       ///< Polygon index inside its object (inline list or mesh face).
   int triangle = -1;           ///< Triangle index when a non-planar source was split, else -1.
+  /// Unit normals at the vertices, for a mesh object marked "smooth" (the mean of the faces'
+  /// normals around each vertex, weighted by area; paper 003 warps glossy beams by them);
+  /// empty otherwise (the polygon's normal everywhere).
+  std::vector<Vec3> vertex_normals;
 };
 
 /// Newell's vector: twice the vector area of a (possibly non-planar) polygon. Its direction is

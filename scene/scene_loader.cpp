@@ -1,9 +1,11 @@
 #include "scene/scene_loader.h"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -192,9 +194,9 @@ Refraction read_refraction(const Reader& in, const std::string& where, const Jso
 
 Material read_material(const Reader& in, const std::string& name, const Json& j) {
   const std::string where = "materials.\"" + name + "\"";
-  in.require_object(
-      j, where,
-      {"reflectance", "emission", "transmittance", "specular", "ior", "fresnel", "attenuation"});
+  in.require_object(j, where,
+                    {"reflectance", "emission", "transmittance", "specular", "gloss", "ior",
+                     "fresnel", "attenuation"});
   Material m;
   m.name = name;
   // A refracting material is clear glass unless told otherwise: no diffuse part by default.
@@ -212,6 +214,20 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
       m.transmittance = in.rgb(j["transmittance"], where + ".transmittance");
   }
   if (j.contains("specular")) m.specular = in.rgb(j["specular"], where + ".specular");
+  if (j.contains("gloss")) {
+    m.gloss = in.number(j["gloss"], where + ".gloss");
+    if (!(m.gloss >= 0 && m.gloss <= std::numbers::pi)) {
+      std::ostringstream msg;
+      msg << "gloss = " << m.gloss << " is outside [0, pi] (the lobe's spread in radians)";
+      in.fail(where + ".gloss", msg.str());
+    }
+    if (m.gloss > 0 && !m.is_mirror())
+      in.fail(where, "has \"gloss\" but no \"specular\" (a lobe of nothing)");
+    if (m.gloss > 0 && (m.is_filter() || j.contains("ior")))
+      in.fail(where,
+              "has \"gloss\" with \"transmittance\" or \"ior\": glossy transmission (a "
+              "roughened pane) is not supported yet; give the pane no gloss");
+  }
   // What a refracting interface passes counts against the same incident light as a filter's;
   // the Fresnel transmission is largest at normal incidence, 1 - ((n - 1) / (n + 1))^2.
   Rgb passed = m.transmittance;
@@ -255,6 +271,28 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
     }
   }
   return m;
+}
+
+/// Vertex normals for a smooth mesh object: at each vertex position, the area-weighted mean of
+/// the normals of the object's polygons that have a vertex there (positions match exactly, as
+/// the mesh's shared vertices do). A vertex whose normals cancel keeps its polygon's normal.
+void smooth_normals(std::vector<Polygon>& polygons, int first, int count) {
+  std::map<std::array<double, 3>, Vec3> sum;
+  const auto key = [](const Vec3& v) { return std::array<double, 3>{v.x(), v.y(), v.z()}; };
+  for (int i = first; i < first + count; ++i) {
+    for (const Vec3& v : polygons[i].vertices) {
+      auto [it, added] = sum.try_emplace(key(v), Vec3::Zero());
+      it->second += polygons[i].area * polygons[i].normal;
+    }
+  }
+  for (int i = first; i < first + count; ++i) {
+    Polygon& p = polygons[i];
+    p.vertex_normals.clear();
+    for (const Vec3& v : p.vertices) {
+      const Vec3& s = sum[key(v)];
+      p.vertex_normals.push_back(s.norm() > 0 ? Vec3(s.normalized()) : p.normal);
+    }
+  }
 }
 
 /// "lights": a list of isotropic point lights, {"position": [x, y, z], "intensity": [r, g, b]}.
@@ -400,7 +438,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
   for (size_t i = 0; i < objects.size(); ++i) {
     const Json& o = objects[i];
     std::string where = "objects[" + std::to_string(i) + "]";
-    in.require_object(o, where, {"name", "mesh", "polygons", "material"});
+    in.require_object(o, where, {"name", "mesh", "polygons", "material", "smooth"});
     SceneObject object;
     if (o.contains("name")) {
       object.name = in.string(o["name"], where + ".name");
@@ -456,6 +494,14 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
       in.fail(where, "the scene has more than " + std::to_string(limits::kPolygons) + " polygons");
     }
     object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
+    if (o.contains("smooth")) {
+      if (!o["smooth"].is_boolean()) in.fail(where + ".smooth", "expected true or false");
+      if (o["smooth"].get<bool>()) {
+        if (!o.contains("mesh"))
+          in.fail(where, "\"smooth\" needs a \"mesh\" (its faces share vertices)");
+        smooth_normals(scene.polygons, object.first_polygon, object.polygon_count);
+      }
+    }
     if (scene.materials[object.material].refracts()) {
       // 000 §4 follows light into a polyhedron and out through another of its facets.
       const SurfaceClosure closure =

@@ -19,7 +19,8 @@ namespace rad::test {
 class GlossyCubature {
  public:
   /// The integrand's scalar part (per unit I s) at barycentric weights w of `beam`'s triangle.
-  GlossyCubature(const GlossyBeam& beam, const Vec3& f, const Vec3& n) : beam_(beam), f_(f), n_(n) {}
+  GlossyCubature(const GlossyBeam& beam, const Vec3& f, const Vec3& n)
+      : beam_(beam), f_(f), n_(n) {}
 
   /// E / (I s), to about `tolerance` absolute.
   double integrate(double tolerance) const {

@@ -194,6 +194,30 @@ TEST(SceneLoader, ReadsPointLights) {
                InputError);
 }
 
+TEST(SceneLoader, ReadsGlossAndSmoothMeshes) {
+  // Issue 20: "gloss" (radians, with "specular") and "smooth" (vertex normals: the area-weighted
+  // mean of the faces' normals at each shared vertex; 003 warps beams by them).
+  const Scene scene = parse_scene(
+      R"({"materials": {"brushed": {"reflectance": 0.1, "specular": 0.8, "gloss": 0.15}},)"
+      R"( "objects": [{"mesh": "roof.obj", "material": "brushed", "smooth": true},)"
+      R"(             {"mesh": "roof.obj", "material": "brushed"}]})",
+      kData / "meshes" / "scene.json");
+  const Material& m = scene.materials[0];
+  EXPECT_TRUE(m.is_glossy() && m.is_mirror());
+  EXPECT_EQ(m.gloss, 0.15);
+  ASSERT_EQ(scene.polygons.size(), 4u);
+  const Polygon& slope = scene.polygons[0];
+  ASSERT_EQ(slope.vertex_normals.size(), 4u);
+  const double r = 1 / std::sqrt(2.0);
+  EXPECT_NEAR((slope.normal - Vec3(0, -r, r)).norm(), 0, 1e-12);
+  // On the ridge (vertices 2 and 3) the two slopes' normals average to straight up; at the
+  // eaves (0 and 1) only this slope's.
+  EXPECT_NEAR((slope.vertex_normals[0] - slope.normal).norm(), 0, 1e-12);
+  EXPECT_NEAR((slope.vertex_normals[2] - Vec3(0, 0, 1)).norm(), 0, 1e-12);
+  EXPECT_NEAR((slope.vertex_normals[3] - Vec3(0, 0, 1)).norm(), 0, 1e-12);
+  EXPECT_TRUE(scene.polygons[2].vertex_normals.empty()) << "not smooth: the face's normal";
+}
+
 TEST(SceneLoader, WarnsOfARefractingObjectThatIsNotClosedOrFacesIn) {
   const Scene open = glass_cube(R"({"ior": 1.5})", 5);
   ASSERT_EQ(open.warnings.size(), 1u);
