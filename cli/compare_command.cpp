@@ -17,6 +17,7 @@ struct CompareOptions {
   std::string image, reference, map, png;
   bool no_png = false;
   double max = 0;
+  double floor = 0;
 };
 
 void run_compare(const CompareOptions& o) {
@@ -28,10 +29,11 @@ void run_compare(const CompareOptions& o) {
                      " has " + std::to_string(reference.width) + "x" +
                      std::to_string(reference.height));
   }
-  const ErrorMap map = relative_error_map(image, reference);
+  const ErrorMap map = relative_error_map(image, reference, o.floor);
   std::cout << "image: " << o.image << "\nreference: " << o.reference
             << "\npixels compared: " << map.stats.pixels << " (skipped " << map.stats.skipped
-            << " where the reference is 0)\n"
+            << (o.floor > 0 ? " where the reference is below the floor)\n"
+                            : " where the reference is 0)\n")
             << "max relative error: " << map.stats.max
             << "\nmean relative error: " << map.stats.mean
             << "\nRMS relative error: " << map.stats.rms << "\n";
@@ -79,6 +81,11 @@ void add_compare_command(CLI::App& app, Run& run) {
   sub->add_option("--max", o->max,
                   "Error at the top of the colour bar (default: the largest error)")
       ->check(CLI::PositiveNumber);
+  sub->add_option("--floor", o->floor,
+                  "Compare only pixels whose reference exceeds this fraction of its mean (a "
+                  "sampled reference is noise alone in the dark); default 0: every lit pixel")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   sub->callback([o, &run] { run = [o] { run_compare(*o); }; });
 }
 

@@ -55,7 +55,11 @@ void run_solve(const SolveOptions& o) {
             << 100.0 * s.unhidden_pairs / std::max(1LL, s.visibility_pairs)
             << "% with nothing between them (no shadow rays)\n"
             << "energy: emitted " << rgb(s.emitted) << " = absorbed " << rgb(s.absorbed)
-            << " + escaped " << rgb(s.escaped) << " + unshot " << rgb(s.unshot) << "\n"
+            << " + escaped " << rgb(s.escaped) << " + unshot " << rgb(s.unshot)
+            << (s.redirected == Rgb::Zero()
+                    ? ""
+                    : " + redirected by glossy surfaces, not carried " + rgb(s.redirected))
+            << "\n"
             << "wrote " << o.output << "\n";
 }
 
@@ -80,7 +84,8 @@ void add_solve_command(CLI::App& app, Run& run) {
       "linear interpolation misses the received radiosity by more than --refine-threshold (near\n"
       "a contact or concave edge: where any corner does), during shots and in --refine-passes\n"
       "passes afterwards. Stops when the unshot power is below --unshot of the emitted. Prints a\n"
-      "summary and the energy ledger (emitted = absorbed + escaped + unshot) on stderr. Bitwise\n"
+      "summary and the energy ledger (emitted = absorbed + escaped + unshot [+ redirected: what\n"
+      "glossy surfaces reflect into their lobes, not carried]) on stderr. Bitwise\n"
       "deterministic for a seed, whatever the thread count. Accuracy against time:\n"
       "bench/results/global_accuracy.md. The algorithm: docs/algorithms.md.");
   sub->add_option("scene", o->scene, "Scene file (JSON)")->required();

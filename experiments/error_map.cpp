@@ -9,7 +9,7 @@
 
 namespace rad {
 
-ErrorMap relative_error_map(const Image& image, const Image& reference) {
+ErrorMap relative_error_map(const Image& image, const Image& reference, double floor) {
   if (image.width != reference.width || image.height != reference.height) {
     throw Error("images differ in size: " + std::to_string(image.width) + "x" +
                 std::to_string(image.height) + " against the reference's " +
@@ -19,10 +19,20 @@ ErrorMap relative_error_map(const Image& image, const Image& reference) {
   map.width = image.width;
   map.height = image.height;
   map.relative.assign(image.pixels.size(), std::numeric_limits<double>::quiet_NaN());
+  double threshold = 0;
+  if (floor > 0) {
+    double positive_sum = 0;
+    size_t positive = 0;
+    for (const Rgb& r : reference.pixels) {
+      const double ref = r.maxCoeff();
+      if (ref > 0 && std::isfinite(ref)) positive_sum += ref, ++positive;
+    }
+    threshold = positive > 0 ? floor * positive_sum / static_cast<double>(positive) : 0;
+  }
   double sum = 0, sum_squares = 0;
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     const double ref = reference.pixels[i].maxCoeff();
-    if (!(ref > 0) || !std::isfinite(ref)) {
+    if (!(ref > threshold) || !(ref > 0) || !std::isfinite(ref)) {
       ++map.stats.skipped;
       continue;
     }

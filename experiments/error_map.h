@@ -12,7 +12,8 @@ namespace rad {
 struct ErrorStats {
   double max = 0, mean = 0, rms = 0;
   size_t pixels = 0;   ///< Pixels compared: those where the reference is positive.
-  size_t skipped = 0;  ///< Pixels not compared: the reference is 0 (background, back faces).
+  size_t skipped = 0;  ///< Pixels not compared: the reference is 0 (background, back faces),
+                       ///< or below the floor.
 };
 
 /// Per pixel, |image - reference| / reference on the brightest channel:
@@ -26,8 +27,10 @@ struct ErrorMap {
 };
 
 /// Throws Error when the sizes differ. A NaN in `image` where the reference is positive counts
-/// as an infinite error (so it shows in `max`).
-ErrorMap relative_error_map(const Image& image, const Image& reference);
+/// as an infinite error (so it shows in `max`). With `floor` > 0, pixels whose max_c R_c is at
+/// most floor times its mean over the positive pixels are not compared either: in the dark, a
+/// sampled reference's noise is all there is, and the relative error means nothing.
+ErrorMap relative_error_map(const Image& image, const Image& reference, double floor = 0);
 
 /// Writes the relative error in all three channels (0 where not compared) as OpenEXR,
 /// atomically (the heat map picture is viz/error_heat_map.h). Throws Error.

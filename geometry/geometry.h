@@ -8,12 +8,14 @@
 ///  - tolerance.h: the scene's tolerance policy, one value for the gatherers and the culling;
 ///  - emitting_face.h: the faces the exact gatherers take;
 ///  - exact_gatherer.h: the one interface of the two exact gatherers;
-///  - refraction.h: the optics of a flat interface (Snell, apparent depth, Fresnel; 000 §4).
+///  - refraction.h: the optics of a flat interface (Snell, apparent depth, Fresnel; 000 §4);
+///  - glossy_beam.h: one point light's glossy beam through one triangle (003 §4).
 ///
 /// May use: Eigen only.
 #include "geometry/clip.h"
 #include "geometry/emitting_face.h"
 #include "geometry/exact_gatherer.h"
+#include "geometry/glossy_beam.h"
 #include "geometry/lambert.h"
 #include "geometry/plane.h"
 #include "geometry/refraction.h"

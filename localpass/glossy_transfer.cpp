@@ -126,7 +126,8 @@ GlossyTransfer::GlossyTransfer(const Scene& scene, const GlossySettings& setting
     const auto& v = beam.triangle().vertex;
     Node bound;
     bound.centre = (v[0] + v[1] + v[2]) / 3;
-    for (const Vec3& corner : v) bound.radius = std::max(bound.radius, (corner - bound.centre).norm());
+    for (const Vec3& corner : v)
+      bound.radius = std::max(bound.radius, (corner - bound.centre).norm());
     bound.axis = beam.mean_direction();
     // The scattered directions at the corners, the edges' midpoints and the centre (smooth
     // normals interpolate between the corners' directions).
@@ -165,8 +166,8 @@ int GlossyTransfer::build(int first, int count) {
     const Node& b = leaf_bounds_[order_[k]];
     node.radius = std::max(node.radius, (b.centre - node.centre).norm() + b.radius);
     node.half_angle =
-        std::min(std::numbers::pi, std::max(node.half_angle, angle_between(node.axis, b.axis) +
-                                                                 b.half_angle));
+        std::min(std::numbers::pi,
+                 std::max(node.half_angle, angle_between(node.axis, b.axis) + b.half_angle));
   }
   const int index = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
@@ -216,6 +217,7 @@ GlossyTransfer::Result GlossyTransfer::irradiance(const Vec3& x, const Vec3& n) 
     if (!may_reach(node, x)) continue;
     if (node.left < 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
+        if (!may_reach(leaf_bounds_[order_[k]], x)) continue;  // each beam's own cone
         result.irradiance += beams_[order_[k]].irradiance(x, n);
         ++result.beams;
       }

@@ -34,10 +34,10 @@
 namespace rad {
 
 struct GlossySettings {
-  int split = 8;           ///< Each scatterer triangle into split^2 pieces
-  int light_split = 2;     ///< Each emitter triangle into light_split^2 point sources
-  double cutoff = 5;       ///< The cones' widening in sigmas (infinite: no cut)
-  bool hierarchy = true;   ///< false: every beam at every receiver (the same values)
+  int split = 8;          ///< Each scatterer triangle into split^2 pieces
+  int light_split = 2;    ///< Each emitter triangle into light_split^2 point sources
+  double cutoff = 5;      ///< The cones' widening in sigmas (infinite: no cut)
+  bool hierarchy = true;  ///< false: every beam at every receiver (the same values)
 };
 
 class GlossyTransfer {

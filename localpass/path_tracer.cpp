@@ -5,6 +5,8 @@
 #include <numbers>
 #include <random>
 
+#include "geometry/glossy_beam.h"
+#include "geometry/refraction.h"
 #include "scene/point_lights.h"
 #include "scene/polygon.h"
 #include "scene/polygon_faces.h"
@@ -27,6 +29,7 @@ PathTracer::PathTracer(const Scene& scene, bool interface_reflections)
       offset_(scene.tolerance().ray_offset),
       limits_(RayCaster::limits_of(scene)) {
   limits_.interface_reflections = interface_reflections;
+  limits_.glossy_as_mirror = false;  // their lobes are sampled here
   emitter_of_.assign(scene.polygons.size(), -1);
   for (const EmittingFace& f : faces_from_polygons(scene)) {
     if (f.exitance == Rgb::Zero()) continue;
@@ -93,6 +96,35 @@ Rgb PathTracer::straight_emission(const Vec3& p, const Vec3& normal, std::mt1993
   return h;
 }
 
+template <typename Incoming>
+Rgb PathTracer::glossy_radiance(const Vec3& p, const Vec3& normal, const Vec3& shading,
+                                const Vec3& out, const Material& m, std::mt19937_64& rng,
+                                const Incoming& incoming) const {
+  const double cos_out = normal.dot(out);
+  if (!(cos_out > 0)) return Rgb::Zero();
+  const double sigma = m.gloss;
+  // The point lights by next-event estimation: their highlight.
+  const Rgb l = glossy_highlight(scene_, caster_, m, p, normal, shading, out, offset_);
+  const Vec3 origin = p + offset_ * normal;
+  // The rest: a direction w drawn about the lobe's centre for `out` (-reflect(out): the angle
+  // between out and the mirror direction of light from w is the angle between w and it), phi
+  // as a 2D Gaussian of the angle, so its density per steradian is rho(phi) phi / sin(phi); the
+  // estimate s rho cos_in L / (cos_out density) = s cos_in (sin phi / phi) L / cos_out.
+  std::uniform_real_distribution<double> u(0, 1);
+  const double phi = sigma * std::sqrt(-2 * std::log(1 - u(rng)));
+  const double psi = 2 * std::numbers::pi * u(rng);
+  if (phi >= std::numbers::pi) return l;
+  const Vec3 centre = -reflect(out, shading);
+  const PlaneFrame frame(Vec3::Zero(), centre);
+  const Vec3 w =
+      std::cos(phi) * centre + std::sin(phi) * (std::cos(psi) * frame.u + std::sin(psi) * frame.v);
+  const double cos_in = normal.dot(w);
+  if (!(cos_in > 0)) return l;
+  const double jacobian = phi > 0 ? std::sin(phi) / phi : 1.0;
+  return l + m.specular.cwiseProduct(incoming(origin - 0.5 * offset_ * w, w)) *
+                 (cos_in * jacobian / cos_out);
+}
+
 PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths,
                                          uint64_t seed) const {
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + 7);
@@ -100,39 +132,68 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
   // One sample of H at (p, normal) after `bounces` diffuse bounces: the emitters seen straight
   // (through filters) by a point on each, and by one cosine-weighted ray, the two combined by
   // their weights; the rest by that ray alone.
-  const auto sample = [&](const auto& self, const Vec3& p, const Vec3& normal, int bounces) -> Rgb {
-    Rgb h = straight_emission(p, normal, rng);
-    const Vec3 d = cosine_direction(normal, rng);
-    // Off the surface along its normal, and half that back along the ray, so that no ray
-    // starts inside a plane (at a point on an edge the lift along the normal stays in the
-    // neighbour's); what lies that near the point is passed (RayCaster::follow), as the exact
-    // gatherers see polygons through x edge-on.
+  // pi times the radiance arriving along the ray (origin, d), as the sum over the surfaces it
+  // meets (through filters, off mirrors, across interfaces) of what each sends back along it:
+  // emission, diffuse reflection (one sample of H there, after `bounces` diffuse bounces) and
+  // glossy reflection (003's lobe). With `shared`, the ray was cosine-sampled at a point whose
+  // normal it is: emitters it meets straight share their light with that point's samples
+  // (straight_emission) by their weights; otherwise they count whole.
+  const auto incoming = [&](const auto& self, const Vec3& origin, const Vec3& d, int bounces,
+                            const Vec3* shared) -> Rgb {
+    Rgb radiance = Rgb::Zero();
     caster_.follow(
-        {p + offset_ * normal - 0.5 * offset_ * d, d}, limits_, offset_,
+        {origin, d}, limits_, offset_,
         [&](const Hit& hit, const Rgb& weight, int reflections) {
           if (!hit.front_facing) return;
           const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];
           Rgb b = m.emission;
           const int emitter = emitter_of_[hit.polygon];
-          if (reflections == 0 && emitter >= 0) {  // seen straight: shared with the samples
+          if (shared && reflections == 0 && emitter >= 0) {  // seen straight: shared
             const Emitter& e = emitters_[emitter];
-            b *= cosine_weight(normal.dot(d), e, hit.distance, -e.normal.dot(d));
+            b *= cosine_weight(shared->dot(d), e, hit.distance, -e.normal.dot(d));
           }
-          if (m.reflectance.maxCoeff() > 0) {
-            const double keep = bounces < 2 ? 1.0 : std::min(0.95, m.reflectance.maxCoeff());
-            if (u(rng) < keep) {
-              b +=
-                  m.reflectance.cwiseProduct(self(self, hit.point, hit.normal, bounces + 1)) / keep;
-            }
+          // Russian roulette past two bounces, by the largest reflectance.
+          const auto keep_for = [&](const Rgb& r) {
+            return bounces < 2 ? 1.0 : std::min(0.95, r.maxCoeff());
+          };
+          const double keep = keep_for(m.reflectance);
+          if (m.reflectance.maxCoeff() > 0 && u(rng) < keep) {
+            // One sample of H at the hit: its emitters by points on them, the rest by one
+            // cosine-weighted ray (the two combined by their weights).
+            const Vec3& at = hit.normal;
+            const Vec3 next = cosine_direction(at, rng);
+            const Rgb h =
+                straight_emission(hit.point, at, rng) +
+                self(self, hit.point + offset_ * at - 0.5 * offset_ * next, next, bounces + 1, &at);
+            b += m.reflectance.cwiseProduct(h) / keep;
           }
-          h += weight.cwiseProduct(b);
+          const double keep_glossy = keep_for(m.specular);
+          if (m.is_glossy() && u(rng) < keep_glossy) {
+            const Vec3 shading = shading_normal(scene_.polygons[hit.polygon], hit.point);
+            b += glossy_radiance(hit.point, hit.normal, shading, -hit.direction, m, rng,
+                                 [&](const Vec3& o, const Vec3& w) {
+                                   return self(self, o, w, bounces + 1, nullptr);
+                                 }) /
+                 keep_glossy;
+          }
+          radiance += weight.cwiseProduct(b);
         },
         offset_);
-    return h;
+    return radiance;
+  };
+  // One sample of H at (x, n): its emitters by points on them, the rest by one cosine-weighted
+  // ray. Off the surface along its normal, and half that back along the ray, so that no ray
+  // starts inside a plane (at a point on an edge the lift along the normal stays in the
+  // neighbour's); what lies that near the point is passed (RayCaster::follow), as the exact
+  // gatherers see polygons through x edge-on.
+  const auto sample = [&]() -> Rgb {
+    const Vec3 d = cosine_direction(n, rng);
+    return straight_emission(x, n, rng) +
+           incoming(incoming, x + offset_ * n - 0.5 * offset_ * d, d, 0, &n);
   };
   Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
   for (int i = 0; i < paths; ++i) {
-    const Rgb h = sample(sample, x, n, 0);
+    const Rgb h = sample();
     sum += h;
     sum2 += h.cwiseProduct(h);
   }

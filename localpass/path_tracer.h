@@ -53,6 +53,15 @@ class PathTracer {
     Rgb exitance;
   };
   Rgb straight_emission(const Vec3& p, const Vec3& normal, std::mt19937_64& rng) const;
+  /// pi times the radiance a glossy surface (the model of 003: s rho(angle between out and the
+  /// mirror direction of in about the shading normal) per steradian, scattering the flux it
+  /// receives) sends from p (unit normal `normal`, shading normal `shading`) in unit direction
+  /// `out`: the point lights' by next-event
+  /// estimation, the rest by one direction drawn from the lobe and `incoming` (pi times the
+  /// radiance arriving along a ray, emitters counted whole).
+  template <typename Incoming>
+  Rgb glossy_radiance(const Vec3& p, const Vec3& normal, const Vec3& shading, const Vec3& out,
+                      const Material& m, std::mt19937_64& rng, const Incoming& incoming) const;
   /// The balance-heuristic weight of a cosine-sampled ray from a point with normal n that
   /// meets emitter e at distance r, cos_z from its normal.
   static double cosine_weight(double cos_p, const Emitter& e, double r, double cos_z);

@@ -54,8 +54,16 @@ class ProgressiveSolver {
   /// reflectance), so the ledger counts it there.
   Rgb stays(int polygon) const {
     const Material& m = material(polygon);
-    // (A mirror's specular part goes on too: its images deliver it.)
-    return Rgb::Ones() - m.transmittance - (scene_.mirror_depth > 0 ? m.specular : Rgb::Zero());
+    // (A mirror's specular part goes on too: its images deliver it. A glossy surface's leaves
+    // the solution: redirects.)
+    const bool passes_on = scene_.mirror_depth > 0 || m.is_glossy();
+    return Rgb::Ones() - m.transmittance - (passes_on ? m.specular : Rgb::Zero());
+  }
+  /// The part of the light arriving at a polygon's front that a glossy surface reflects into
+  /// its lobe: the ledger's "redirected", which the solution does not carry (paper 003).
+  Rgb redirects(int polygon) const {
+    const Material& m = material(polygon);
+    return m.is_glossy() ? m.specular : Rgb::Zero();
   }
   /// A filter's back neither reflects nor emits (one-sided, DESIGN §3) but absorbs what it does
   /// not pass on: the ledger asks its elements what reaches their backs too. Opaque polygons'
@@ -157,13 +165,14 @@ class ProgressiveSolver {
   /// of leaves added in block order, each patch's unshot radiosity serially in element order
   /// from what the parallel part left per leaf. (Serial whole, with a pass of its own for the
   /// far receivers' irradiance, this was a tenth of the solve's wall time.) Returns the power
-  /// the receivers keep.
+  /// the receivers keep, plus what glossy ones redirect.
   Rgb distribute(const Rgb& delta, const Rgb& far);
 
   /// One leaf's part of distribute(): its radiosity and irradiance, and what it adds to the
   /// power kept and absorbed. Returns its patch and the unshot radiosity it adds there (patch
   /// -1: it receives nothing).
-  std::pair<int, Rgb> take_in(int e, const Rgb& delta, const Rgb& far, Rgb& kept, Rgb& absorbed);
+  std::pair<int, Rgb> take_in(int e, const Rgb& delta, const Rgb& far, Rgb& kept, Rgb& absorbed,
+                              Rgb& redirected);
 
   /// This shot's visible form factor at each of `which`. A pair's form factor does not change
   /// between shots: a patch shooting again reuses what its first shot measured (same value,

@@ -164,7 +164,8 @@ void ProgressiveSolver::regather(const std::vector<int>& children) {
     el.irradiance = gathered[k];
     el.radiosity = material(el.polygon).emission + rho.cwiseProduct(gathered[k]);
     stats().absorbed += (stays(el.polygon) - rho).cwiseProduct(power);
-    stats().escaped -= stays(el.polygon).cwiseProduct(power);
+    stats().escaped -= (stays(el.polygon) + redirects(el.polygon)).cwiseProduct(power);
+    stats().redirected += redirects(el.polygon).cwiseProduct(power);
     if (absorbs_at_back(el.polygon)) {
       const Rgb back_power =
           stays(el.polygon).cwiseProduct(back[k] - back_irradiance_[children[k]]) * el.area;

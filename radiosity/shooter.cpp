@@ -53,6 +53,11 @@ Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double
   const Scene& scene = caster.scene();
   in_plane_ = scene.tolerance().in_plane;
   pieces_ = mirror_pieces(scene);
+  // Glossy surfaces are no mirrors to the solver: what they reflect is redirected, counted in
+  // the ledger and not carried (paper 003's transfer is the local pass's).
+  std::erase_if(pieces_, [&](const MirrorPiece& piece) {
+    return scene.materials[scene.polygons[piece.polygon].material].is_glossy();
+  });
   chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
 }
 

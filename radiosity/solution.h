@@ -78,8 +78,10 @@ struct Element {
 };
 
 /// What the solve did, and the energy ledger (all powers in W when lengths are metres):
-/// emitted = absorbed + escaped + unshot, where escaped is what shots sent that no element
-/// received (light leaving an open scene, plus reciprocity error of point-sampled receivers).
+/// emitted = absorbed + escaped + unshot + redirected, where escaped is what shots sent that no
+/// element received (light leaving an open scene, plus reciprocity error of point-sampled
+/// receivers) and redirected what glossy surfaces reflect into their lobes (paper 003), which
+/// the solution does not carry on.
 struct SolveStats {
   int shots = 0;
   int patches = 0;
@@ -90,8 +92,9 @@ struct SolveStats {
   Rgb absorbed = Rgb::Zero();
   Rgb escaped = Rgb::Zero();
   Rgb unshot = Rgb::Zero();
-  double unshot_fraction = 0;  ///< sum(unshot) / sum(emitted)
-  bool converged = false;      ///< Stopped by unshot_fraction rather than max_shots.
+  Rgb redirected = Rgb::Zero();  ///< Reflected by glossy surfaces, not carried (0 without any)
+  double unshot_fraction = 0;    ///< sum(unshot) / sum(emitted)
+  bool converged = false;        ///< Stopped by unshot_fraction rather than max_shots.
   /// (receiver point, shooter) pairs whose visibility was needed, and of those the ones no
   /// polygon could hide (no rays cast). Counted by the solve, not saved in the solution file.
   long long visibility_pairs = 0, unhidden_pairs = 0;

@@ -100,6 +100,9 @@ void ProgressiveSolver::shoot_point_lights() {
     back_irradiance_[e] = back[e];
     stats().absorbed += stay.cwiseProduct(back[e]) * el.area;
     kept += stay.cwiseProduct(back[e]) * el.area;
+    const Rgb redirected = redirects(el.polygon).cwiseProduct(front[e]) * el.area;
+    stats().redirected += redirected;
+    kept += redirected;
   }
   stats().escaped += power - kept;
 }
@@ -214,27 +217,28 @@ void ProgressiveSolver::shoot(int shooter) {
 Rgb ProgressiveSolver::distribute(const Rgb& delta, const Rgb& far) {
   to_patch_.resize(leaves_.size());
   struct Sums {
-    Rgb kept = Rgb::Zero(), absorbed = Rgb::Zero();
+    Rgb kept = Rgb::Zero(), absorbed = Rgb::Zero(), redirected = Rgb::Zero();
   };
   const Sums sums = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<size_t>(0, leaves_.size(), 512), Sums{},
       [&](const tbb::blocked_range<size_t>& range, Sums sum) {
         for (size_t k = range.begin(); k != range.end(); ++k)
-          to_patch_[k] = take_in(leaves_[k], delta, far, sum.kept, sum.absorbed);
+          to_patch_[k] = take_in(leaves_[k], delta, far, sum.kept, sum.absorbed, sum.redirected);
         return sum;
       },
       [](const Sums& a, const Sums& b) {
-        return Sums{a.kept + b.kept, a.absorbed + b.absorbed};
+        return Sums{a.kept + b.kept, a.absorbed + b.absorbed, a.redirected + b.redirected};
       });
   stats().absorbed += sums.absorbed;
+  stats().redirected += sums.redirected;
   for (size_t k = 0; k < leaves_.size(); ++k) {
     if (to_patch_[k].first >= 0) patches()[to_patch_[k].first].unshot += to_patch_[k].second;
   }
-  return sums.kept;
+  return sums.kept + sums.redirected;  // what the elements took in, or turned into lobes
 }
 
 std::pair<int, Rgb> ProgressiveSolver::take_in(int e, const Rgb& delta, const Rgb& far, Rgb& kept,
-                                               Rgb& absorbed) {
+                                               Rgb& absorbed, Rgb& redirected) {
   if (buried_[e]) return {-1, Rgb::Zero()};
   Element& el = elements()[e];
   const Rgb irradiance = near_[e] ? near_incoming_[e] : far.cwiseProduct(ff_[e]);
@@ -248,6 +252,7 @@ std::pair<int, Rgb> ProgressiveSolver::take_in(int e, const Rgb& delta, const Rg
   el.irradiance += irradiance;
   kept += stay * el.area;
   absorbed += (stay - reflected) * el.area;
+  redirected += redirects(el.polygon).cwiseProduct(irradiance) * el.area;
   if (at_back) {
     const Rgb back = delta.cwiseProduct(back_ff_[e]);
     const Rgb taken = stays(el.polygon).cwiseProduct(back) * el.area;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <atomic>
 
+#include "scene/point_lights.h"
+
 namespace rad {
 
 namespace {
@@ -69,8 +71,14 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
                                                         r.irradiance + r.refracted + r.glossy));
         out.refracted.pixels[index] +=
             weight.cwiseProduct(material.reflectance.cwiseProduct(r.refracted));
+        // A point light's highlight on a glossy surface (003's lobe), apart as glossy light.
+        const Rgb highlight =
+            glossy_highlight(scene, caster, material, hit.point, hit.normal,
+                             shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction,
+                             scene.tolerance().ray_offset);
+        out.radiosity.pixels[index] += weight.cwiseProduct(highlight);
         out.glossy.pixels[index] +=
-            weight.cwiseProduct(material.reflectance.cwiseProduct(r.glossy));
+            weight.cwiseProduct(material.reflectance.cwiseProduct(r.glossy) + highlight);
         out.bound.pixels[index] += weight.cwiseProduct(material.reflectance.cwiseProduct(r.bound));
         out.gathered_exactly[index] += r.gathered_exactly;
         out.projected[index] += r.projected;
@@ -86,8 +94,12 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const Rgb h = gatherer.gather(hit.point, hit.normal, samples, index);
-        out.radiosity.pixels[index] +=
-            weight.cwiseProduct(material.emission + material.reflectance.cwiseProduct(h));
+        const Rgb highlight =
+            glossy_highlight(scene, caster, material, hit.point, hit.normal,
+                             shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction,
+                             scene.tolerance().ray_offset);
+        out.radiosity.pixels[index] += weight.cwiseProduct(
+            material.emission + material.reflectance.cwiseProduct(h) + highlight);
       });
   image.samples_per_pixel = samples;
   return image;
@@ -100,6 +112,10 @@ IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
       caster, camera, scene.tolerance().ray_offset, progress,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
+        out.radiosity.pixels[index] += weight.cwiseProduct(
+            glossy_highlight(scene, caster, material, hit.point, hit.normal,
+                             shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction,
+                             scene.tolerance().ray_offset));
         if (material.reflectance == Rgb::Zero()) {
           out.radiosity.pixels[index] += weight.cwiseProduct(material.emission);
           return;

@@ -24,7 +24,8 @@ struct IrradianceImage {
   /// (w rho H_refracted): not covered by `bound`, which bounds radiosity - refracted.
   Image refracted;
   /// Of `radiosity`, the part from point sources by way of glossy surfaces (003's beams, w rho
-  /// H_glossy): not covered by `bound` either.
+  /// H_glossy) and the point lights' highlights on glossy surfaces the eye sees: not covered by
+  /// `bound` either.
   Image glossy;
   Image bound;  ///< Sum of w rho * H's certified bound: |B - B_exact| <= bound (0 for Monte Carlo)
   /// Per pixel: faces gathered exactly (0 at misses, back sides, Monte Carlo; summed over the

@@ -17,4 +17,13 @@ namespace rad {
 Rgb point_light_irradiance(const Scene& scene, const RayCaster& caster, const Vec3& x,
                            const Vec3& n, double offset);
 
+/// pi times the radiance a glossy surface of material m at x (unit normal n, its plane's)
+/// sends in unit direction `out` from the scene's point lights (paper 003's model: the flux it
+/// receives scattered by s rho(phi) per steradian, phi between `out` and the mirror direction
+/// of the light's ray about the shading normal `shading`, scene/polygon.h): sum of
+/// s rho(phi) I cos_in / (r^2 cos_out) through what lies between, times pi (so that it adds to
+/// a radiosity). A light's highlight on a glossy surface, as the eye and the path tracer see it.
+Rgb glossy_highlight(const Scene& scene, const RayCaster& caster, const Material& m, const Vec3& x,
+                     const Vec3& n, const Vec3& shading, const Vec3& out, double offset);
+
 }  // namespace rad

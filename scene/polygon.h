@@ -74,6 +74,11 @@ std::optional<std::pair<int, int>> find_self_intersection(const std::vector<Vec2
 /// vertices) are clipped last, so the result always has #V-2 triangles. Cost O(#V^2).
 std::vector<std::array<int, 3>> triangulate(const std::vector<Vec2>& polygon);
 
+/// The shading normal at point x of polygon p (on its plane): its vertex normals (a smooth
+/// mesh's) interpolated over the triangle of p that holds x, barycentrically (the triangles of
+/// triangulate(), as the glossy beams split it), normalised; p.normal without vertex normals.
+Vec3 shading_normal(const Polygon& p, const Vec3& x);
+
 /// Point-in-polygon test by winding number in 2D; points on the boundary count as inside.
 bool contains_2d(const std::vector<Vec2>& polygon, const Vec2& p);
 

@@ -125,6 +125,7 @@ std::optional<Hit> RayCaster::closest_hit(const Ray& ray, double t_min, double t
   }
   hit.distance = t;
   hit.point = ray.origin + t * ray.direction;
+  hit.direction = ray.direction;
   return hit;
 }
 
@@ -243,7 +244,8 @@ void RayCaster::follow(const Ray& ray, Bends limits, double gap,
       }
       visit(*hit, b.weight, b.bends.reflections + b.bends.refractions);
       const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
-      if (hit->front_facing && m.is_mirror() && b.bends.reflections < limits.reflections) {
+      if (hit->front_facing && m.is_mirror() && b.bends.reflections < limits.reflections &&
+          (limits.glossy_as_mirror || !m.is_glossy())) {
         Bends next = b.bends;
         ++next.reflections;
         branches.push_back({{hit->point, reflect(b.ray.direction, hit->normal)},

@@ -19,6 +19,7 @@ struct Hit {
   Vec3 point;                 ///< origin + distance * direction.
   Vec3 normal;                ///< The polygon's unit front normal (not flipped).
   bool front_facing = false;  ///< True when the ray arrives at the front side.
+  Vec3 direction;             ///< The (unit) direction of the ray that met it.
 };
 
 /// Ray queries against every polygon of a scene, both sides (polygons are opaque from both).
@@ -63,6 +64,10 @@ class RayCaster {
     /// As a limit: false follows only the refracted rays at interfaces, dropping what they
     /// reflect (Fresnel, total internal reflection): the model of 000 §4's heuristic.
     bool interface_reflections = true;
+    /// As a limit: false leaves glossy surfaces (Material::gloss > 0) unreflected, for a caller
+    /// that samples their lobe itself (the path tracer); true reflects them about the lobe's
+    /// centre, as mirrors (the eye rays, the Monte Carlo gather).
+    bool glossy_as_mirror = true;
   };
   /// The scene's limits: mirror_depth and refraction_depth.
   static Bends limits_of(const Scene& scene) {

@@ -3,7 +3,9 @@
 /// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes,
 /// mesh_reader.h) and their validation, the camera, ray casting (Embree behind ray_caster.h),
 /// the polygons as gatherer faces (polygon_faces.h), the mirror pieces and their chains
-/// (mirror_pieces.h), and whether a refracting object is a closed solid (closed_surface.h).
+/// (mirror_pieces.h), whether a refracting object is a closed solid (closed_surface.h), and
+/// point lights (point_light.h) with what reaches a point straight from them and their glossy
+/// highlights (point_lights.h).
 ///
 /// May use: geometry, Embree (in .cpp files only), nlohmann-json.
 #include <filesystem>

@@ -163,6 +163,29 @@ def main():
         w("| ![error against the knob](images/refraction-knob.png) | ![error against time](images/refraction-cost.png) |")
         w("|---|---|")
         w("")
+    if os.path.exists("bench/results/glossy.md"):
+        lines = open("bench/results/glossy.md").read().split("\n")
+        w("## Glossy transfer: the beams against the path tracer")
+        w("")
+        w("From [`bench/results/glossy.md`](../bench/results/glossy.md) (`bash bench/glossy.sh`): paper")
+        w("003's backward beams on the ring of `data/glossy-ring/` (black floor) at each lobe spread")
+        w("and `--glossy-split`, against the path tracer, which samples the lobes; and the glossy")
+        w("gather's time against the number of scatterer triangles, with the cone hierarchy and")
+        w("without. What limits it: [algorithms.md](algorithms.md#glossy-transfer-by-backward-beams-paper-003-a-heuristic-kept-apart).")
+        w("")
+        out.extend(provenance(lines))
+        w("")
+        for line in lines:
+            if line.startswith("## "):
+                w("#" + line)
+                w("")
+            elif line.startswith("|"):
+                w(line)
+            elif line == "" and out and out[-1].startswith("|"):
+                w("")
+        w("| ![error against sigma](images/glossy-sigma.png) | ![time against triangles](images/glossy-cost.png) |")
+        w("|---|---|")
+        w("")
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")

@@ -37,6 +37,19 @@ TEST(ErrorMap, RelativeErrorOnTheBrightestChannelByHand) {
   EXPECT_DOUBLE_EQ(map.stats.rms, std::sqrt((0.05 * 0.05 + 0.25) / 3));
 }
 
+TEST(ErrorMap, AFloorLeavesOutTheDarkPixelsByHand) {
+  // Brightest channels 4, 1, 0, 2: their mean over the positive ones is 7 / 3. A floor of 0.5
+  // (7 / 6) leaves out pixel 1 (1 <= 7 / 6) besides pixel 2 (0).
+  Image reference(2, 2), image(2, 2);
+  reference.pixels = {Rgb(1, 2, 4), Rgb(1, 1, 1), Rgb(0, 0, 0), Rgb(2, 0, 0)};
+  image.pixels = {Rgb(1.2, 2, 4), Rgb(1, 1, 0.5), Rgb(5, 5, 5), Rgb(2, 0, 0)};
+  const ErrorMap map = relative_error_map(image, reference, 0.5);
+  EXPECT_TRUE(std::isnan(map.relative[1]));
+  EXPECT_EQ(map.stats.pixels, 2u);
+  EXPECT_EQ(map.stats.skipped, 2u);
+  EXPECT_DOUBLE_EQ(map.stats.mean, 0.025);
+}
+
 TEST(ErrorMap, NanInTheImageIsAnInfiniteErrorAndSizesMustMatch) {
   Image reference(1, 1), image(1, 1);
   reference.pixels[0] = Rgb(1, 1, 1);

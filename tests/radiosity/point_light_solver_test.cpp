@@ -21,7 +21,8 @@ using test::SceneBuilder;
 
 void expect_balanced(const SolveStats& st) {
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(st.absorbed[c] + st.escaped[c] + st.unshot[c], st.emitted[c], 1e-9 * st.emitted[c])
+    EXPECT_NEAR(st.absorbed[c] + st.escaped[c] + st.unshot[c] + st.redirected[c], st.emitted[c],
+                1e-9 * st.emitted[c])
         << "channel " << c << ": emitted " << st.emitted[c] << " absorbed " << st.absorbed[c]
         << " escaped " << st.escaped[c] << " unshot " << st.unshot[c];
   }

@@ -63,7 +63,7 @@ TEST(Solver, FurnaceGivesEOverOneMinusRhoAndErrorFallsWithThreshold) {
 void expect_energy_balance(const Solution& s, const std::string& name) {
   const SolveStats& st = s.stats;
   for (int c = 0; c < 3; ++c) {
-    const double sum = st.absorbed[c] + st.escaped[c] + st.unshot[c];
+    const double sum = st.absorbed[c] + st.escaped[c] + st.unshot[c] + st.redirected[c];
     EXPECT_NEAR(sum, st.emitted[c], 1e-6 * st.emitted[c])
         << name << " channel " << c << ": emitted " << st.emitted[c] << " absorbed "
         << st.absorbed[c] << " escaped " << st.escaped[c] << " unshot " << st.unshot[c];

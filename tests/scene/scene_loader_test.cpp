@@ -216,6 +216,12 @@ TEST(SceneLoader, ReadsGlossAndSmoothMeshes) {
   EXPECT_NEAR((slope.vertex_normals[2] - Vec3(0, 0, 1)).norm(), 0, 1e-12);
   EXPECT_NEAR((slope.vertex_normals[3] - Vec3(0, 0, 1)).norm(), 0, 1e-12);
   EXPECT_TRUE(scene.polygons[2].vertex_normals.empty()) << "not smooth: the face's normal";
+  // Interpolated across the face: up on the ridge, the face's at the eaves, between halfway.
+  EXPECT_NEAR((shading_normal(slope, Vec3(0.3, 0.5, 0.5)) - Vec3(0, 0, 1)).norm(), 0, 1e-12);
+  EXPECT_NEAR((shading_normal(slope, Vec3(0.7, 0, 0)) - slope.normal).norm(), 0, 1e-12);
+  const Vec3 half = (slope.normal + Vec3(0, 0, 1)).normalized();
+  EXPECT_NEAR((shading_normal(slope, Vec3(0.4, 0.25, 0.25)) - half).norm(), 0, 1e-12);
+  EXPECT_EQ(shading_normal(scene.polygons[2], Vec3(0.4, 0.25, 0.25)), scene.polygons[2].normal);
 }
 
 TEST(SceneLoader, WarnsOfARefractingObjectThatIsNotClosedOrFacesIn) {
