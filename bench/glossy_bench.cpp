@@ -78,11 +78,13 @@ rad::Scene ring(int segments, double sigma, bool lamp = false) {
   for (int k = 0; k < segments; ++k) {
     const double a = 2 * std::numbers::pi * k / segments,
                  b = 2 * std::numbers::pi * (k + 1) / segments;
-    const rad::Vec3 p0(r * std::cos(a), r * std::sin(a), 0), p1(r * std::cos(b), r * std::sin(b), 0);
+    const rad::Vec3 p0(r * std::cos(a), r * std::sin(a), 0),
+        p1(r * std::cos(b), r * std::sin(b), 0);
     add({p0, p0 + rad::Vec3(0, 0, h), p1 + rad::Vec3(0, 0, h), p1}, 1, 1);
     rad::Polygon& q = scene.polygons.back();
     q.vertex_normals.clear();
-    for (const rad::Vec3& v : q.vertices) q.vertex_normals.push_back(-rad::Vec3(v.x(), v.y(), 0).normalized());
+    for (const rad::Vec3& v : q.vertices)
+      q.vertex_normals.push_back(-rad::Vec3(v.x(), v.y(), 0).normalized());
   }
   scene.objects = {{"floor", "", 0, 0, 1}, {"ring", "", 1, 1, segments}};
   const rad::Vec3 light(-2.2, 0, 1.1);
@@ -215,9 +217,8 @@ int main(int argc, char** argv) {
     long visited = 0;
     const auto run = [&](const rad::GlossyTransfer& t, bool count) {
       std::vector<int> beams(floor.size());
-      tbb::parallel_for(size_t(0), floor.size(), [&](size_t i) {
-        beams[i] = t.irradiance(floor[i].x, floor[i].n).beams;
-      });
+      tbb::parallel_for(size_t(0), floor.size(),
+                        [&](size_t i) { beams[i] = t.irradiance(floor[i].x, floor[i].n).beams; });
       if (count) {
         visited = 0;
         for (const int b : beams) visited += b;
@@ -228,8 +229,8 @@ int main(int argc, char** argv) {
     const double slow_us = per * median_seconds([&] { run(slow, false); });
     const int triangles = 2 * segments;
     std::printf("| %d | %d | %.0f | %.1f | %.1f | %.1f |\n", triangles, fast.beam_count(),
-                static_cast<double>(visited) / static_cast<double>(floor.size()), fast_us,
-                slow_us, slow_us / fast_us);
+                static_cast<double>(visited) / static_cast<double>(floor.size()), fast_us, slow_us,
+                slow_us / fast_us);
     with.x.push_back(triangles), with.y.push_back(fast_us);
     without.x.push_back(triangles), without.y.push_back(slow_us);
   }

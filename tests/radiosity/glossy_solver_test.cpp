@@ -17,8 +17,8 @@ TEST(GlossySolver, RedirectsWhatItsLobeReflectsAndSaysSo) {
   // takes in H, reflects 0.2 H diffusely (its radiosity) and redirects 0.6 H; the ledger
   // balances with that term, which is 0.6 of what the floor receives.
   SceneBuilder b;
-  const int brushed = b.material("brushed", Rgb::Constant(0.2), Rgb::Zero(), Rgb::Zero(),
-                                 Rgb::Constant(0.6));
+  const int brushed =
+      b.material("brushed", Rgb::Constant(0.2), Rgb::Zero(), Rgb::Zero(), Rgb::Constant(0.6));
   b.scene().materials[brushed].gloss = 0.1;
   b.rectangle(-1, 1, -1, 1, 0, false, brushed);
   b.scene().lights.push_back({Vec3(0.2, 0.1, 0.8), Rgb(1, 2, 3)});
