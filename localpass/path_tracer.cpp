@@ -129,9 +129,6 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
                                          uint64_t seed) const {
   std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + 7);
   std::uniform_real_distribution<double> u(0, 1);
-  // One sample of H at (p, normal) after `bounces` diffuse bounces: the emitters seen straight
-  // (through filters) by a point on each, and by one cosine-weighted ray, the two combined by
-  // their weights; the rest by that ray alone.
   // pi times the radiance arriving along the ray (origin, d), as the sum over the surfaces it
   // meets (through filters, off mirrors, across interfaces) of what each sends back along it:
   // emission, diffuse reflection (one sample of H there, after `bounces` diffuse bounces) and
@@ -160,10 +157,11 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
           if (m.reflectance.maxCoeff() > 0 && u(rng) < keep) {
             // One sample of H at the hit: its emitters by points on them, the rest by one
             // cosine-weighted ray (the two combined by their weights).
+            // (In this order: the random numbers are drawn as they always were.)
             const Vec3& at = hit.normal;
+            Rgb h = straight_emission(hit.point, at, rng);
             const Vec3 next = cosine_direction(at, rng);
-            const Rgb h =
-                straight_emission(hit.point, at, rng) +
+            h +=
                 self(self, hit.point + offset_ * at - 0.5 * offset_ * next, next, bounces + 1, &at);
             b += m.reflectance.cwiseProduct(h) / keep;
           }
@@ -187,9 +185,9 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
   // neighbour's); what lies that near the point is passed (RayCaster::follow), as the exact
   // gatherers see polygons through x edge-on.
   const auto sample = [&]() -> Rgb {
+    Rgb h = straight_emission(x, n, rng);
     const Vec3 d = cosine_direction(n, rng);
-    return straight_emission(x, n, rng) +
-           incoming(incoming, x + offset_ * n - 0.5 * offset_ * d, d, 0, &n);
+    return h + incoming(incoming, x + offset_ * n - 0.5 * offset_ * d, d, 0, &n);
   };
   Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
   for (int i = 0; i < paths; ++i) {
