@@ -59,12 +59,13 @@ demo-glass: build
 	  -o $(GLASS_OUT)/error-map-pathtrace.exr --max 0.1
 
 # Paper 003's glossy transfer: a ring of brushed gold under a point light on a white floor
-# (data/glossy-ring/): solve (the ledger says what the ring redirects), the local pass with the
-# glossy beams kept apart, the path-traced reference and the error map between (the pictures of
-# the README; docs/images/glossy/README.md). About 4 minutes on 2 cores, most of it the path
-# tracer.
+# (data/glossy-ring/), then the Cornell box with a roughened pane under its lamp
+# (data/cornell-glossy-pane/): solve, the local pass with the glossy beams kept apart, the
+# path-traced reference and the error map between (the pictures of the README;
+# docs/images/glossy/README.md). About 5 minutes on 2 cores, most of it the path tracer.
 GLOSSY_OUT ?= out/glossy-ring
 GLOSSY = data/glossy-ring/scene.json
+PANE = data/cornell-glossy-pane/scene.json
 demo-glossy: build
 	@mkdir -p $(GLOSSY_OUT)
 	$(RADIOSITY) info $(GLOSSY)
@@ -74,6 +75,13 @@ demo-glossy: build
 	$(RADIOSITY) render $(GLOSSY) --method pathtrace --samples 8192 -o $(GLOSSY_OUT)/ring-pathtraced.exr
 	$(RADIOSITY) compare $(GLOSSY_OUT)/ring-vertex.exr $(GLOSSY_OUT)/ring-pathtraced.exr \
 	  --floor 0.05 --max 0.5 -o $(GLOSSY_OUT)/ring-error.exr
+	$(RADIOSITY) solve $(PANE) -o $(GLOSSY_OUT)/pane.vtp
+	$(RADIOSITY) render $(PANE) --method vertex --solution $(GLOSSY_OUT)/pane.vtp --width 192 --height 192 \
+	  -o $(GLOSSY_OUT)/pane-vertex.exr
+	$(RADIOSITY) render $(PANE) --method pathtrace --samples 2048 --width 192 --height 192 \
+	  -o $(GLOSSY_OUT)/pane-pathtraced.exr
+	$(RADIOSITY) compare $(GLOSSY_OUT)/pane-vertex.exr $(GLOSSY_OUT)/pane-pathtraced.exr \
+	  --floor 0.05 --max 0.5 -o $(GLOSSY_OUT)/pane-error.exr
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)

@@ -61,6 +61,7 @@ void run_info(const InfoOptions& options) {
                                   {"transmittance", to_json(mat.transmittance)},
                                   {"specular", to_json(mat.specular)},
                                   {"gloss", mat.gloss},
+                                  {"glossy_transmittance", to_json(mat.glossy_transmittance)},
                                   {"polygons", polygons_per_material[m]},
                                   {"area", area_per_material[m]}});
       if (mat.refracts()) {
@@ -112,6 +113,8 @@ void run_info(const InfoOptions& options) {
     // The paper-000 keys only where they are set, so opaque scenes read as before.
     if (mat.is_filter()) std::cout << "transmittance " << triple(mat.transmittance) << "  ";
     if (mat.is_mirror()) std::cout << "specular " << triple(mat.specular) << "  ";
+    if (mat.is_glossy_pane())
+      std::cout << "glossy transmittance " << triple(mat.glossy_transmittance) << "  ";
     if (mat.is_glossy()) std::cout << "gloss " << mat.gloss << " rad  ";
     if (mat.refracts()) {
       const Refraction& r = *mat.refraction;

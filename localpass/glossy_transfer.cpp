@@ -95,27 +95,40 @@ GlossyTransfer::GlossyTransfer(const Scene& scene, const GlossySettings& setting
     const Polygon& p = scene.polygons[i];
     const Material& m = scene.materials[p.material];
     if (!m.is_glossy()) continue;
-    for (const GlossyTriangle& t : triangles_of(p)) {
-      for (const GlossyTriangle& piece : split(t, pieces)) {
-        const Vec3 centre = (piece.vertex[0] + piece.vertex[1] + piece.vertex[2]) / 3;
-        for (const Source& s : sources) {
-          const Vec3 to = centre - s.position;
-          const double distance = to.norm();
-          if (!(distance > 2 * offset)) continue;
-          const Vec3 w = to / distance;
-          Rgb intensity = s.intensity;
-          if (s.lambertian) intensity *= std::max(0.0, s.normal.dot(w));
-          if (!(p.normal.dot(-w) > 0) || intensity == Rgb::Zero()) continue;  // its back
-          // First-order visibility: the source sees the piece's centre (through filters).
-          const Vec3 origin = s.lambertian ? Vec3(s.position + offset * s.normal) : s.position;
-          const Vec3 leg = centre - origin;
-          const double length = leg.norm();
-          const Rgb passed =
-              caster.transmittance({origin, leg / length}, offset, length - offset, offset);
-          if (passed == Rgb::Zero()) continue;
-          GlossyBeam beam(s.position, intensity.cwiseProduct(passed), piece, m.specular, m.gloss);
-          if (beam.empty()) continue;
-          beams_.push_back(std::move(beam));
+    // A glossy mirror reflects its specular part from its front; a roughened pane passes its
+    // glossy transmittance from either side (003 Fig. 13).
+    std::vector<std::pair<bool, Rgb>> kinds;
+    if (m.is_glossy_mirror()) kinds.push_back({false, m.specular});
+    if (m.is_glossy_pane()) kinds.push_back({true, m.glossy_transmittance});
+    for (const auto& [transmits, weight] : kinds) {
+      for (GlossyTriangle t : triangles_of(p)) {
+        t.transmits = transmits;
+        for (const GlossyTriangle& piece : split(t, pieces)) {
+          const Vec3 centre = (piece.vertex[0] + piece.vertex[1] + piece.vertex[2]) / 3;
+          const int piece_index = static_cast<int>(piece_centre_.size());
+          piece_centre_.push_back(centre);
+          piece_normal_.push_back(p.normal);
+          for (const Source& s : sources) {
+            const Vec3 to = centre - s.position;
+            const double distance = to.norm();
+            if (!(distance > 2 * offset)) continue;
+            const Vec3 w = to / distance;
+            Rgb intensity = s.intensity;
+            if (s.lambertian) intensity *= std::max(0.0, s.normal.dot(w));
+            if (intensity == Rgb::Zero()) continue;
+            if (!transmits && !(p.normal.dot(-w) > 0)) continue;  // a mirror's back
+            // First-order visibility: the source sees the piece's centre (through filters).
+            const Vec3 origin = s.lambertian ? Vec3(s.position + offset * s.normal) : s.position;
+            const Vec3 leg = centre - origin;
+            const double length = leg.norm();
+            const Rgb passed =
+                caster.transmittance({origin, leg / length}, offset, length - offset, offset);
+            if (passed == Rgb::Zero()) continue;
+            GlossyBeam beam(s.position, intensity.cwiseProduct(passed), piece, weight, m.gloss);
+            if (beam.empty()) continue;
+            beams_.push_back(std::move(beam));
+            beam_piece_.push_back(piece_index);
+          }
         }
       }
     }
@@ -145,6 +158,10 @@ GlossyTransfer::GlossyTransfer(const Scene& scene, const GlossySettings& setting
     }
     bound.half_angle = std::min(std::numbers::pi, spread + cutoff * beam.sigma());
     leaf_bounds_.push_back(bound);
+  }
+  if (settings.shadows && !beams_.empty()) {
+    caster_ = std::make_unique<RayCaster>(scene);
+    offset_ = offset;
   }
   order_.resize(beams_.size());
   for (size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
@@ -204,8 +221,31 @@ bool GlossyTransfer::may_reach(const Node& node, const Vec3& x) const {
 GlossyTransfer::Result GlossyTransfer::irradiance(const Vec3& x, const Vec3& n) const {
   Result result;
   if (beams_.empty()) return result;
+  // Second-order shadows: what passes between x and each piece's centre, asked once per piece.
+  std::vector<Rgb> passed;
+  std::vector<char> asked;
+  if (caster_) passed.resize(piece_centre_.size()), asked.assign(piece_centre_.size(), 0);
+  const auto evaluate = [&](int b) {
+    const Rgb e = beams_[b].irradiance(x, n);
+    if (!caster_ || e == Rgb::Zero()) return e;
+    const int piece = beam_piece_[b];
+    if (!asked[piece]) {
+      asked[piece] = 1;
+      // From off x's surface to just off the piece, on x's side of it.
+      const Vec3& c = piece_centre_[piece];
+      const double side = piece_normal_[piece].dot(x - c) > 0 ? 1.0 : -1.0;
+      const Vec3 origin = x + offset_ * n;
+      const Vec3 leg = c + side * offset_ * piece_normal_[piece] - origin;
+      const double length = leg.norm();
+      passed[piece] = length > 2 * offset_
+                          ? caster_->transmittance({origin, leg / length}, 0.5 * offset_,
+                                                   length - offset_, offset_)
+                          : Rgb(Rgb::Ones());
+    }
+    return Rgb(e.cwiseProduct(passed[piece]));
+  };
   if (!hierarchy_) {
-    for (const GlossyBeam& beam : beams_) result.irradiance += beam.irradiance(x, n);
+    for (int b = 0; b < static_cast<int>(beams_.size()); ++b) result.irradiance += evaluate(b);
     result.beams = static_cast<int>(beams_.size());
     return result;
   }
@@ -218,7 +258,7 @@ GlossyTransfer::Result GlossyTransfer::irradiance(const Vec3& x, const Vec3& n) 
     if (node.left < 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         if (!may_reach(leaf_bounds_[order_[k]], x)) continue;  // each beam's own cone
-        result.irradiance += beams_[order_[k]].irradiance(x, n);
+        result.irradiance += evaluate(order_[k]);
         ++result.beams;
       }
       continue;

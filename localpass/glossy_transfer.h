@@ -8,12 +8,15 @@
 /// §4 works from point lights: "polygon sources: split into point lights"): each triangle of an
 /// emitter into light_split^2 similar pieces, each a point at its centroid radiating
 /// (M / pi) area cos(angle from the emitter's normal) toward each scatterer piece.
-/// Scatterers: each glossy polygon's triangles (fan of its convex pieces; vertex normals of a
+/// Scatterers: each glossy polygon's triangles (a glossy mirror's from its front, a roughened
+/// pane's from either side, through it) (fan of its convex pieces; vertex normals of a
 /// smooth mesh interpolated), each split into glossy_split^2 similar pieces: the model is good
 /// when a piece subtends a small angle against sigma (tests/geometry/glossy_beam_test.cpp), so
 /// the split is the accuracy knob. One beam per (source, scatterer piece) whose piece's
-/// centroid the source sees (first-order visibility, through filters); what lies between the
-/// piece and the receiver is not asked (second-order shadows: 003 §4.5 leaves them out too).
+/// centroid the source sees (first-order visibility, through filters). Beyond the paper (003
+/// §4.5 leaves them out): second-order shadows, what lies between a piece's centre and the
+/// receiver, asked once per piece and receiver (through filters), so that a block between a
+/// glossy pane and the floor shadows its light.
 ///
 /// The hierarchy (003 §4.3's "hierarchical traversal similar to the cone hierarchy of Chuang
 /// and Cheng"): a binary tree over the beams, each node a bounding sphere (centre c, radius r)
@@ -29,6 +32,7 @@
 #include <vector>
 
 #include "geometry/glossy_beam.h"
+#include "scene/ray_caster.h"
 #include "scene/scene.h"
 
 namespace rad {
@@ -38,6 +42,7 @@ struct GlossySettings {
   int light_split = 2;    ///< Each emitter triangle into light_split^2 point sources
   double cutoff = 5;      ///< The cones' widening in sigmas (infinite: no cut)
   bool hierarchy = true;  ///< false: every beam at every receiver (the same values)
+  bool shadows = true;    ///< Second-order shadows (false: 003's model as printed)
 };
 
 class GlossyTransfer {
@@ -69,6 +74,11 @@ class GlossyTransfer {
   bool may_reach(const Node& node, const Vec3& x) const;
 
   std::vector<GlossyBeam> beams_;
+  std::vector<int> beam_piece_;        ///< Each beam's scatterer piece
+  std::vector<Vec3> piece_centre_;     ///< Each piece's centre
+  std::vector<Vec3> piece_normal_;     ///< Each piece's face normal
+  std::unique_ptr<RayCaster> caster_;  ///< Second-order shadows; null without
+  double offset_ = 0;
   std::vector<int> order_;
   std::vector<Node> nodes_;
   std::vector<Vec3> beam_centre_;  ///< Centroid of each beam's piece

@@ -87,7 +87,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   // Glossy surfaces are no plane mirrors to the local pass: their light comes by beams.
   std::vector<MirrorPiece> pieces = mirror_pieces(scene);
   std::erase_if(pieces, [&](const MirrorPiece& piece) {
-    return scene.materials[scene.polygons[piece.polygon].material].is_glossy();
+    return scene.materials[scene.polygons[piece.polygon].material].is_glossy_mirror();
   });
   LocalPassSettings unfolded = settings;
   unfolded.mirror_depth = 0;         // an unfolded scene has no mirrors (images never reflect)

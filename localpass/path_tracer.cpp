@@ -101,11 +101,23 @@ Rgb PathTracer::glossy_radiance(const Vec3& p, const Vec3& normal, const Vec3& s
                                 const Vec3& out, const Material& m, std::mt19937_64& rng,
                                 const Incoming& incoming) const {
   const double cos_out = normal.dot(out);
-  if (!(cos_out > 0)) return Rgb::Zero();
+  if (cos_out == 0) return Rgb::Zero();
   const double sigma = m.gloss;
   // The point lights by next-event estimation: their highlight.
   const Rgb l = glossy_highlight(scene_, caster_, m, p, normal, shading, out, offset_);
-  const Vec3 origin = p + offset_ * normal;
+  // The rest by one direction drawn from one lobe: reflection off a glossy mirror's front, or
+  // transmission through a roughened pane (from either side), whichever applies, the other by
+  // chance when both do (the estimate divided by its probability, 1/2).
+  const bool can_reflect = m.is_glossy_mirror() && cos_out > 0;
+  const bool can_pass = m.is_glossy_pane();
+  if (!can_reflect && !can_pass) return l;
+  std::uniform_real_distribution<double> pick(0, 1);
+  const bool passes = can_pass && (!can_reflect || pick(rng) < 0.5);
+  const double choice = can_reflect && can_pass ? 2.0 : 1.0;
+  const Rgb weight = (passes ? m.glossy_transmittance : m.specular) * choice;
+  const Vec3 lit_normal =
+      passes ? Vec3(cos_out > 0 ? -normal : normal) : Vec3(cos_out > 0 ? normal : -normal);
+  const Vec3 origin = p + offset_ * lit_normal;
   // The rest: a direction w drawn about the lobe's centre for `out` (-reflect(out): the angle
   // between out and the mirror direction of light from w is the angle between w and it), phi
   // as a 2D Gaussian of the angle, so its density per steradian is rho(phi) phi / sin(phi); the
@@ -114,15 +126,15 @@ Rgb PathTracer::glossy_radiance(const Vec3& p, const Vec3& normal, const Vec3& s
   const double phi = sigma * std::sqrt(-2 * std::log(1 - u(rng)));
   const double psi = 2 * std::numbers::pi * u(rng);
   if (phi >= std::numbers::pi) return l;
-  const Vec3 centre = -reflect(out, shading);
+  const Vec3 centre = passes ? Vec3(-out) : Vec3(-reflect(out, shading));
   const PlaneFrame frame(Vec3::Zero(), centre);
   const Vec3 w =
       std::cos(phi) * centre + std::sin(phi) * (std::cos(psi) * frame.u + std::sin(psi) * frame.v);
-  const double cos_in = normal.dot(w);
+  const double cos_in = lit_normal.dot(w);
   if (!(cos_in > 0)) return l;
   const double jacobian = phi > 0 ? std::sin(phi) / phi : 1.0;
-  return l + m.specular.cwiseProduct(incoming(origin - 0.5 * offset_ * w, w)) *
-                 (cos_in * jacobian / cos_out);
+  return l + weight.cwiseProduct(incoming(origin - 0.5 * offset_ * w, w)) *
+                 (cos_in * jacobian / std::abs(cos_out));
 }
 
 PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths,
@@ -141,18 +153,31 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
     caster_.follow(
         {origin, d}, limits_, offset_,
         [&](const Hit& hit, const Rgb& weight, int reflections) {
-          if (!hit.front_facing) return;
           const Material& m = scene_.materials[scene_.polygons[hit.polygon].material];
+          // Russian roulette past two bounces, by the largest reflectance.
+          const auto keep_for = [&](const Rgb& r) {
+            return bounces < 2 ? 1.0 : std::min(0.95, r.maxCoeff());
+          };
+          const auto glossy_part = [&] {
+            const double keep = keep_for(m.specular.cwiseMax(m.glossy_transmittance));
+            if (!(u(rng) < keep)) return Rgb(Rgb::Zero());
+            const Vec3 shading = shading_normal(scene_.polygons[hit.polygon], hit.point);
+            return Rgb(glossy_radiance(hit.point, hit.normal, shading, -hit.direction, m, rng,
+                                       [&](const Vec3& o, const Vec3& w) {
+                                         return self(self, o, w, bounces + 1, nullptr);
+                                       }) /
+                       keep);
+          };
+          if (!hit.front_facing) {  // only a roughened pane sends light out of its back
+            if (m.is_glossy_pane()) radiance += weight.cwiseProduct(glossy_part());
+            return;
+          }
           Rgb b = m.emission;
           const int emitter = emitter_of_[hit.polygon];
           if (shared && reflections == 0 && emitter >= 0) {  // seen straight: shared
             const Emitter& e = emitters_[emitter];
             b *= cosine_weight(shared->dot(d), e, hit.distance, -e.normal.dot(d));
           }
-          // Russian roulette past two bounces, by the largest reflectance.
-          const auto keep_for = [&](const Rgb& r) {
-            return bounces < 2 ? 1.0 : std::min(0.95, r.maxCoeff());
-          };
           const double keep = keep_for(m.reflectance);
           if (m.reflectance.maxCoeff() > 0 && u(rng) < keep) {
             // One sample of H at the hit: its emitters by points on them, the rest by one
@@ -165,15 +190,7 @@ PathTraceEstimate PathTracer::irradiance(const Vec3& x, const Vec3& n, int paths
                 self(self, hit.point + offset_ * at - 0.5 * offset_ * next, next, bounces + 1, &at);
             b += m.reflectance.cwiseProduct(h) / keep;
           }
-          const double keep_glossy = keep_for(m.specular);
-          if (m.is_glossy() && u(rng) < keep_glossy) {
-            const Vec3 shading = shading_normal(scene_.polygons[hit.polygon], hit.point);
-            b += glossy_radiance(hit.point, hit.normal, shading, -hit.direction, m, rng,
-                                 [&](const Vec3& o, const Vec3& w) {
-                                   return self(self, o, w, bounces + 1, nullptr);
-                                 }) /
-                 keep_glossy;
-          }
+          if (m.is_glossy()) b += glossy_part();
           radiance += weight.cwiseProduct(b);
         },
         offset_);

@@ -56,7 +56,7 @@ Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double
   // Glossy surfaces are no mirrors to the solver: what they reflect is redirected, counted in
   // the ledger and not carried (paper 003's transfer is the local pass's).
   std::erase_if(pieces_, [&](const MirrorPiece& piece) {
-    return scene.materials[scene.polygons[piece.polygon].material].is_glossy();
+    return scene.materials[scene.polygons[piece.polygon].material].is_glossy_mirror();
   });
   chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
 }

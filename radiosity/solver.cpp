@@ -98,9 +98,11 @@ void ProgressiveSolver::shoot_point_lights() {
     stats().absorbed += (stay - rho).cwiseProduct(front[e]) * el.area;
     kept += stay.cwiseProduct(front[e]) * el.area;
     back_irradiance_[e] = back[e];
-    stats().absorbed += stay.cwiseProduct(back[e]) * el.area;
-    kept += stay.cwiseProduct(back[e]) * el.area;
-    const Rgb redirected = redirects(el.polygon).cwiseProduct(front[e]) * el.area;
+    stats().absorbed += stays_at_back(el.polygon).cwiseProduct(back[e]) * el.area;
+    kept += stays_at_back(el.polygon).cwiseProduct(back[e]) * el.area;
+    const Rgb redirected = (redirects(el.polygon).cwiseProduct(front[e]) +
+                            redirects_at_back(el.polygon).cwiseProduct(back[e])) *
+                           el.area;
     stats().redirected += redirected;
     kept += redirected;
   }
@@ -255,10 +257,11 @@ std::pair<int, Rgb> ProgressiveSolver::take_in(int e, const Rgb& delta, const Rg
   redirected += redirects(el.polygon).cwiseProduct(irradiance) * el.area;
   if (at_back) {
     const Rgb back = delta.cwiseProduct(back_ff_[e]);
-    const Rgb taken = stays(el.polygon).cwiseProduct(back) * el.area;
+    const Rgb taken = stays_at_back(el.polygon).cwiseProduct(back) * el.area;
     back_irradiance_[e] += back;
     kept += taken;
     absorbed += taken;
+    redirected += redirects_at_back(el.polygon).cwiseProduct(back) * el.area;
   }
   leaf_unshot_[e] += reflected;
   return {el.patch, reflected * (el.area / live_area_[el.patch])};
@@ -308,7 +311,24 @@ Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress) {
   settings.validate();
   const auto start = std::chrono::steady_clock::now();
-  ProgressiveSolver solver(caster, settings);
+  // A roughened pane is carried as the filter of its glossy transmittance: at the scale of
+  // patches its blur matters little, and a pane in front of a lamp would otherwise take most of
+  // the scene's light out of the solution. (Glossy mirrors are not carried: their chains of
+  // images cost too much on a curved mesh; the ledger's `redirected` counts them.)
+  std::optional<Scene> carried;
+  std::optional<RayCaster> carried_caster;
+  for (const Material& m : caster.scene().materials) {
+    if (!m.is_glossy_pane()) continue;
+    carried.emplace(caster.scene());
+    for (Material& c : carried->materials) {
+      if (!c.is_glossy_pane()) continue;
+      c.transmittance = c.glossy_transmittance;
+      c.glossy_transmittance = Rgb::Zero();
+    }
+    carried_caster.emplace(*carried);
+    break;
+  }
+  ProgressiveSolver solver(carried_caster ? *carried_caster : caster, settings);
   solver.shoot_until_converged(progress);
   for (int pass = 0; pass < settings.refine_passes; ++pass) {
     if (solver.refine_by_neighbours() == 0) break;

@@ -34,6 +34,8 @@ struct SolveProgress {
 ///      let the children re-gather what has been shot, and shoot on to convergence.
 /// New elements always re-gather (exact, see ProgressiveSolver::regather); the difference to
 /// what they inherited is shot as a correction, negative where they hold less.
+/// Glossy surfaces (paper 003): a glossy mirror's specular part is not carried (the ledger's
+/// `redirected`); a roughened pane is carried as the filter of its glossy transmittance.
 /// Parallel over receivers (TBB); bitwise deterministic for a given seed whatever the thread
 /// count. Throws Error for invalid settings.
 Solution solve(const RayCaster& caster, const SolverSettings& settings,

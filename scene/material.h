@@ -40,6 +40,11 @@ struct Material {
   /// lobe's centre; the local pass gathers its light from point lights by glossy beams
   /// (localpass/glossy_transfer.h), apart from the certified part.
   double gloss = 0;
+  /// A roughened pane (paper 003 Fig. 13; "transmittance" with "gloss" in the file): the
+  /// fraction passed through into the lobe about the straight-through direction, from either
+  /// side. Such a pane is no filter (its `transmittance` stays 0: opaque to every straight
+  /// line, like a refracting interface); its light comes by glossy beams.
+  Rgb glossy_transmittance{0, 0, 0};
   /// Set for the interface of a refracting polyhedron ("ior" in the file; 000 §4). Its
   /// `transmittance` above stays 0: a refracting polygon is no filter.
   std::optional<Refraction> refraction{};
@@ -50,7 +55,11 @@ struct Material {
   /// True when some channel reflects specularly (sharply or glossily).
   bool is_mirror() const { return (specular.array() > 0).any(); }
   /// True for a glossy reflector: specular with a lobe of spread gloss > 0.
-  bool is_glossy() const { return gloss > 0 && is_mirror(); }
+  bool is_glossy_mirror() const { return gloss > 0 && is_mirror(); }
+  /// True for a roughened pane: glossy transmission.
+  bool is_glossy_pane() const { return gloss > 0 && (glossy_transmittance.array() > 0).any(); }
+  /// Either: the surface scatters into a lobe (003).
+  bool is_glossy() const { return is_glossy_mirror() || is_glossy_pane(); }
   /// True for the interface of a refracting polyhedron.
   bool refracts() const { return refraction.has_value(); }
 };

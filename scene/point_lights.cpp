@@ -29,23 +29,33 @@ Rgb point_light_irradiance(const Scene& scene, const RayCaster& caster, const Ve
 Rgb glossy_highlight(const Scene& scene, const RayCaster& caster, const Material& m, const Vec3& x,
                      const Vec3& n, const Vec3& shading, const Vec3& out, double offset) {
   const double cos_out = n.dot(out);
-  if (!m.is_glossy() || !(cos_out > 0)) return Rgb::Zero();
-  Rgb l = Rgb::Zero();
-  const Vec3 origin = x + offset * n;
+  if (!m.is_glossy() || cos_out == 0) return Rgb::Zero();
+  // Reflected: lights on out's side, off the front. Passed through a roughened pane: lights
+  // on the other side, from either side, the lobe about the light's own direction.
+  const bool front = cos_out > 0;
+  Rgb reflected = Rgb::Zero(), passed_on = Rgb::Zero();
   for (const PointLight& light : scene.lights) {
+    const double side = n.dot(light.position - x);
+    const bool same_side = (side > 0) == front;
+    const bool reflects = same_side && front && m.is_glossy_mirror();
+    const bool passes = !same_side && m.is_glossy_pane();
+    if (!(reflects || passes) || side == 0) continue;
+    const Vec3 origin = x + (side > 0 ? offset : -offset) * n;
     const Vec3 to = light.position - origin;
     const double r = to.norm();
     const Vec3 w = to / r;
-    const double cos_in = n.dot(w);
-    if (!(cos_in > 0)) continue;
-    const Vec3 mirrored = reflect(-w, shading);
-    const double phi = std::atan2(out.cross(mirrored).norm(), out.dot(mirrored));
+    const double cos_in = std::abs(n.dot(w));
+    const Vec3 centre = reflects ? reflect(-w, shading) : Vec3(-w);
+    const double phi = std::atan2(out.cross(centre).norm(), out.dot(centre));
     const double lobe = gaussian_lobe(phi, m.gloss);
     if (!(lobe > 0)) continue;
-    const Rgb passed = caster.transmittance({origin, w}, 0.5 * offset, r - offset, offset);
-    l += light.intensity.cwiseProduct(passed) * (lobe * cos_in / (r * r * cos_out));
+    const Rgb through = caster.transmittance({origin, w}, 0.5 * offset, r - offset, offset);
+    const Rgb l =
+        light.intensity.cwiseProduct(through) * (lobe * cos_in / (r * r * std::abs(cos_out)));
+    (reflects ? reflected : passed_on) += l;
   }
-  return m.specular.cwiseProduct(l) * std::numbers::pi;
+  return (m.specular.cwiseProduct(reflected) + m.glossy_transmittance.cwiseProduct(passed_on)) *
+         std::numbers::pi;
 }
 
 }  // namespace rad

@@ -23,6 +23,8 @@ Rgb point_light_irradiance(const Scene& scene, const RayCaster& caster, const Ve
 /// of the light's ray about the shading normal `shading`, scene/polygon.h): sum of
 /// s rho(phi) I cos_in / (r^2 cos_out) through what lies between, times pi (so that it adds to
 /// a radiosity). A light's highlight on a glossy surface, as the eye and the path tracer see it.
+/// Through a roughened pane (glossy transmittance), the lights on the other side, the lobe
+/// about their own direction, seen from either side.
 Rgb glossy_highlight(const Scene& scene, const RayCaster& caster, const Material& m, const Vec3& x,
                      const Vec3& n, const Vec3& shading, const Vec3& out, double offset);
 

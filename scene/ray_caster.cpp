@@ -245,7 +245,7 @@ void RayCaster::follow(const Ray& ray, Bends limits, double gap,
       visit(*hit, b.weight, b.bends.reflections + b.bends.refractions);
       const Material& m = scene_.materials[scene_.polygons[hit->polygon].material];
       if (hit->front_facing && m.is_mirror() && b.bends.reflections < limits.reflections &&
-          (limits.glossy_as_mirror || !m.is_glossy())) {
+          (limits.glossy_as_mirror || !m.is_glossy_mirror())) {
         Bends next = b.bends;
         ++next.reflections;
         branches.push_back({{hit->point, reflect(b.ray.direction, hit->normal)},

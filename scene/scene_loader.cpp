@@ -221,16 +221,18 @@ Material read_material(const Reader& in, const std::string& name, const Json& j)
       msg << "gloss = " << m.gloss << " is outside [0, pi] (the lobe's spread in radians)";
       in.fail(where + ".gloss", msg.str());
     }
-    if (m.gloss > 0 && !m.is_mirror())
-      in.fail(where, "has \"gloss\" but no \"specular\" (a lobe of nothing)");
-    if (m.gloss > 0 && (m.is_filter() || j.contains("ior")))
-      in.fail(where,
-              "has \"gloss\" with \"transmittance\" or \"ior\": glossy transmission (a "
-              "roughened pane) is not supported yet; give the pane no gloss");
+    if (m.gloss > 0 && j.contains("ior"))
+      in.fail(where, "has \"gloss\" with \"ior\": rough refracting interfaces are not supported");
+    if (m.gloss > 0 && m.is_filter()) {  // a roughened pane: its transmission goes into the lobe
+      m.glossy_transmittance = m.transmittance;
+      m.transmittance = Rgb::Zero();
+    }
+    if (m.gloss > 0 && !m.is_glossy())
+      in.fail(where, "has \"gloss\" but no \"specular\" or \"transmittance\" (a lobe of nothing)");
   }
   // What a refracting interface passes counts against the same incident light as a filter's;
   // the Fresnel transmission is largest at normal incidence, 1 - ((n - 1) / (n + 1))^2.
-  Rgb passed = m.transmittance;
+  Rgb passed = m.transmittance + m.glossy_transmittance;
   if (m.refracts()) {
     const Refraction& r = *m.refraction;
     passed = r.transmittance;

@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Writes data/glossy-ring/ (issue 20, paper 003 Fig. 2): a ring of brushed metal standing on a
+"""Writes data/glossy-ring/ and data/cornell-glossy-pane/ (issue 20). The ring (paper 003 Fig. 2): a ring of brushed metal standing on a
 white floor under a point light, whose inside reflects the light onto the floor as a blurred
 cardioid. The ring is a mesh (ring.obj: SEGMENTS quads inside, facing the axis, and as many
 outside, facing out) marked "smooth", so its glossy beams are warped by vertex normals as a
 round ring's would be. Also ring-points.csv, a line of floor points across the caustic.
+The pane (003 Fig. 13): the Cornell box of data/cornell-glass-mirror/ with one roughened pane
+(transmittance with gloss) under the light in place of its four tinted ones, and no mirror.
 Usage: python3 scripts/glossy_scenes.py"""
 import json
 import math
@@ -77,5 +79,31 @@ def main():
             f.write("%.6f,0,0,0,0,1\n" % x)
 
 
+def cornell_pane():
+    here = os.path.join(os.path.dirname(__file__), "..", "data")
+    with open(os.path.join(here, "cornell-glass-mirror", "scene.json")) as f:
+        glass = json.load(f)
+    materials = {k: v for k, v in glass["materials"].items()
+                 if k in ("white", "red", "green", "light")}
+    materials["frosted glass"] = {"reflectance": 0.04, "transmittance": [0.85, 0.8, 0.7],
+                                  "gloss": 0.12}
+    keep = ("floor", "ceiling", "light", "back wall", "right wall", "left wall", "short block",
+            "tall block")
+    objects = [o for o in glass["objects"] if o["name"] in keep]
+    y = 440.0  # under the light, facing down (counter-clockwise seen from below)
+    objects.append({"name": "frosted pane", "material": "frosted glass",
+                    "polygons": [[[170, y, 180], [390, y, 180], [390, y, 380], [170, y, 380]]]})
+    scene = {"materials": materials, "objects": objects}
+    for key in ("camera", "mirror_depth", "refraction_depth"):
+        if key in glass:
+            scene[key] = glass[key]
+    out = os.path.join(here, "cornell-glossy-pane")
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "scene.json"), "w") as f:
+        json.dump(scene, f, indent=1)
+        f.write("\n")
+
+
 if __name__ == "__main__":
     main()
+    cornell_pane()

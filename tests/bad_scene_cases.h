@@ -54,7 +54,8 @@ inline const std::vector<BadSceneCase>& bad_scene_cases() {
       {"negative_light_intensity.json", "lights[0]", "intensity[1] = -2 is negative"},
       {"light_without_intensity.json", "lights[0]", "missing \"intensity\""},
       {"negative_gloss.json", "materials.\"brushed\".gloss", "gloss = -0.1 is outside [0, pi]"},
-      {"gloss_without_specular.json", "materials.\"matte\"", "has \"gloss\" but no \"specular\""},
+      {"gloss_without_specular.json", "materials.\"matte\"",
+       "has \"gloss\" but no \"specular\" or \"transmittance\""},
       {"smooth_polygons.json", "objects[0]", "\"smooth\" needs a \"mesh\""},
       {"does_not_exist.json", "does_not_exist.json", "cannot open scene file"},
   };

@@ -1,6 +1,7 @@
-// The solver and glossy surfaces (issue 20): what they reflect into their lobes is not carried
-// by the coarse solution but counted in the ledger as "redirected" (paper 003's transfer is the
-// local pass's), and a glossy surface is no mirror to the solver.
+// The solver and glossy surfaces (issue 20): what glossy mirrors reflect into their lobes is
+// not carried by the coarse solution but counted in the ledger as "redirected" (paper 003's
+// transfer is the local pass's), and a glossy surface is no mirror to the solver; a roughened
+// pane is carried as the filter of its glossy transmittance.
 #include <gtest/gtest.h>
 
 #include "radiosity/solver.h"
@@ -37,6 +38,36 @@ TEST(GlossySolver, RedirectsWhatItsLobeReflectsAndSaysSo) {
     EXPECT_NEAR(st.redirected[c], 0.6 * received[c], 1e-9 * received[c]);
   }
   EXPECT_GT(st.redirected.minCoeff(), 0);
+}
+
+TEST(GlossySolver, CarriesARoughenedPaneAsTheFilterOfItsTransmittance) {
+  // At the scale of patches a pane's blur matters little: the solver carries a roughened pane
+  // (glossy transmittance 0.6, a light at its back) exactly as a plain filter of transmittance
+  // 0.6, element for element, and redirects nothing.
+  const auto scene = [](bool rough) {
+    SceneBuilder b;
+    b.rectangle(-2, 2, -2, 2, 0, false, b.material("floor", Rgb::Constant(0.5), Rgb::Zero()));
+    const int pane = b.material("pane", Rgb::Zero(), Rgb::Zero());
+    Material& m = b.scene().materials[pane];
+    if (rough) {
+      m.gloss = 0.1;
+      m.glossy_transmittance = Rgb(0.6, 0.5, 0.4);
+    } else {
+      m.transmittance = Rgb(0.6, 0.5, 0.4);
+    }
+    b.rectangle(-0.5, 0.5, -0.5, 0.5, 1, true, pane);
+    b.scene().lights.push_back({Vec3(0.1, 0.2, 1.6), Rgb(1, 2, 3)});
+    return b.scene();
+  };
+  SolverSettings settings;
+  settings.refine_threshold = 0;  // the same mesh in both
+  const Scene rough = scene(true), plain = scene(false);
+  const Solution a = solve(RayCaster(rough), settings), b = solve(RayCaster(plain), settings);
+  ASSERT_EQ(a.elements.size(), b.elements.size());
+  for (size_t e = 0; e < a.elements.size(); ++e)
+    ASSERT_EQ(a.elements[e].radiosity, b.elements[e].radiosity) << "element " << e;
+  EXPECT_EQ(a.stats.redirected, Rgb::Zero());
+  EXPECT_EQ(a.stats.absorbed, b.stats.absorbed);
 }
 
 }  // namespace

@@ -222,6 +222,15 @@ TEST(SceneLoader, ReadsGlossAndSmoothMeshes) {
   const Vec3 half = (slope.normal + Vec3(0, 0, 1)).normalized();
   EXPECT_NEAR((shading_normal(slope, Vec3(0.4, 0.25, 0.25)) - half).norm(), 0, 1e-12);
   EXPECT_EQ(shading_normal(scene.polygons[2], Vec3(0.4, 0.25, 0.25)), scene.polygons[2].normal);
+  // "gloss" with "transmittance": a roughened pane, no filter (its light goes into the lobe).
+  const Scene pane = parse_scene(
+      R"({"materials": {"frosted": {"reflectance": 0, "transmittance": 0.7, "gloss": 0.2}},)"
+      R"( "objects": [{"polygons": [[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]], "material": "frosted"}]})",
+      "pane.json");
+  const Material& frosted = pane.materials[0];
+  EXPECT_TRUE(frosted.is_glossy_pane() && frosted.is_glossy() && !frosted.is_glossy_mirror());
+  EXPECT_FALSE(frosted.is_filter());
+  EXPECT_EQ(frosted.glossy_transmittance, Rgb::Constant(0.7));
 }
 
 TEST(SceneLoader, WarnsOfARefractingObjectThatIsNotClosedOrFacesIn) {
