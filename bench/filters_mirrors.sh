@@ -6,6 +6,7 @@
 # Writes bench/results/filters_mirrors.md. Usage: bash bench/filters_mirrors.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 radiosity="$build/cli/radiosity"
 work=$(mktemp -d)
@@ -32,9 +33,7 @@ seconds() { grep -o 'in [0-9.e+-]* s' "$1" | head -1 | awk '{print $2}'; }
   echo "Produced by \`bash bench/filters_mirrors.sh\`: each variant of \`data/cornell-glass-mirror\`"
   echo "solved at the default settings, then \`render --method vertex --width 96 --height 96\` (tolerance 0.1),"
   echo "with and without \`--no-mirror-culling\`. One run each (the ratios are what to read)."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . ':!bench/results' || echo ' plus uncommitted changes')"
+  provenance . ':!bench/results'
   echo
   echo "| scene | elements | solve s | render s | render / opaque | faces gathered exactly per pixel | render s, no culling beams |"
   echo "|---|---|---|---|---|---|---|"

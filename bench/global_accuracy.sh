@@ -5,12 +5,10 @@
 # Usage: bash bench/global_accuracy.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 out=bench/results
 mkdir -p "$out" docs/images
-dirty=""
-[ -z "$(git status --porcelain -- geometry scene hemisphere vertex radiosity octree localpass formats render experiments viz cli bench/*.cpp 2>/dev/null)" ] \
-  || dirty=" plus uncommitted changes"
 table=$("$build/bench/global_accuracy" docs/images/global-accuracy.png)
 {
   echo "# The global solution against a converged reference"
@@ -22,9 +20,7 @@ table=$("$build/bench/global_accuracy" docs/images/global-accuracy.png)
   echo "point and channel (value / reference - 1); RMS, largest and mean run over all of them. Solve"
   echo "seconds on all cores, one run (the default: the median of three). The chart:"
   echo "[docs/images/global-accuracy.png](../../docs/images/global-accuracy.png)."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
+  provenance geometry scene hemisphere vertex radiosity octree localpass formats render experiments viz cli "bench/*.cpp"
   echo "$table"
 } > "$out/global_accuracy.md"
 cat "$out/global_accuracy.md"

@@ -6,13 +6,11 @@
 # Usage: bash bench/glossy.sh [BUILD_DIR] [PATHS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 paths=${2:-400000}
 out=bench/results
 mkdir -p "$out" docs/images
-dirty=""
-[ -z "$(git status --porcelain -- geometry scene localpass data/glossy-ring bench/glossy_bench.cpp 2>/dev/null)" ] \
-  || dirty=" plus uncommitted changes"
 table=$("$build/bench/glossy_bench" docs/images/glossy-sigma.png docs/images/glossy-cost.png "$paths")
 {
   echo "# Glossy beams against the path tracer"
@@ -27,9 +25,7 @@ table=$("$build/bench/glossy_bench" docs/images/glossy-sigma.png docs/images/glo
   echo "over the floor (as a picture's pixels), the median of at least 3 runs, with the cone hierarchy (cut at 5 sigma) and over every beam."
   echo "The charts: [error against sigma](../../docs/images/glossy-sigma.png),"
   echo "[time against triangles](../../docs/images/glossy-cost.png)."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
+  provenance geometry scene localpass data/glossy-ring bench/glossy_bench.cpp bench/heuristic_measures.h
   echo
   echo "$table"
 } > "$out/glossy.md"

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/heuristic_measures.h"
 #include "formats/points_csv.h"
 #include "localpass/glossy_transfer.h"
 #include "localpass/local_pass.h"
@@ -30,33 +31,10 @@
 #include "scene/scene_loader.h"
 #include "viz/charts.h"
 
+using rad::bench::median_seconds;
+using rad::bench::rms_error;
+
 namespace {
-
-double rms_error(const std::vector<rad::Rgb>& value, const std::vector<rad::Rgb>& reference) {
-  rad::Rgb mean = rad::Rgb::Zero();
-  for (const rad::Rgb& r : reference) mean += r;
-  mean /= static_cast<double>(reference.size());
-  double sum = 0;
-  for (size_t i = 0; i < value.size(); ++i)
-    sum += (value[i] - reference[i]).cwiseQuotient(mean).squaredNorm();
-  return 100 * std::sqrt(sum / (3.0 * static_cast<double>(value.size())));
-}
-
-template <class Run>
-double median_seconds(const Run& run) {
-  std::vector<double> times;
-  double total = 0;
-  while (times.size() < 3 || total < 1.0) {
-    const auto start = std::chrono::steady_clock::now();
-    run();
-    times.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    total += times.back();
-    if (times.back() >= 10.0) break;
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
 
 /// The ring of data/glossy-ring/ with `segments` quads inside (smooth), on a black floor, lit
 /// by the point light, or (with `lamp`) by a square lamp of side 0.5 in its place facing the
@@ -110,6 +88,21 @@ rad::Scene ring(int segments, double sigma, bool lamp = false) {
   return scene;
 }
 
+/// The local pass at the points (tolerance 0): the exact direct light plus the glossy beams.
+std::vector<rad::Rgb> with_beams(const rad::Scene& scene,
+                                 const std::vector<rad::ProbePoint>& points,
+                                 const rad::GlossySettings& glossy) {
+  rad::LocalPassSettings settings;
+  settings.glossy = glossy;
+  const rad::LocalPass pass(scene, rad::faces_from_polygons(scene), rad::Method::vertex, settings);
+  std::vector<rad::Rgb> value(points.size());
+  tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
+    const rad::LocalPassResult r = pass.gather(points[i].x, points[i].n, 0);
+    value[i] = r.irradiance + r.glossy;
+  });
+  return value;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -141,25 +134,13 @@ int main(int argc, char** argv) {
     by_split[i].name = "--glossy-split " + std::to_string(splits[i]);
   for (const double sigma : sigmas) {
     const rad::Scene scene = ring(40, sigma);
-    const rad::PathTracer tracer(scene);
-    std::vector<rad::Rgb> reference(points.size()), shifted(points.size());
-    tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-      const rad::PathTraceEstimate e = tracer.irradiance(points[i].x, points[i].n, paths, i);
-      reference[i] = e.mean;
-      shifted[i] = e.mean + e.standard_error;
-    });
-    std::printf("| %g | %.2f |", sigma, rms_error(shifted, reference));
+    const rad::bench::Reference reference =
+        rad::bench::trace_reference(rad::PathTracer(scene), points, paths);
+    std::printf("| %g | %.2f |", sigma, reference.noise);
     for (size_t k = 0; k < splits.size(); ++k) {
-      rad::LocalPassSettings settings;
-      settings.glossy.split = splits[k];
-      const rad::LocalPass pass(scene, rad::faces_from_polygons(scene), rad::Method::vertex,
-                                settings);
-      std::vector<rad::Rgb> value(points.size());
-      tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-        const rad::LocalPassResult r = pass.gather(points[i].x, points[i].n, 0);
-        value[i] = r.irradiance + r.glossy;
-      });
-      const double error = rms_error(value, reference);
+      rad::GlossySettings settings;
+      settings.split = splits[k];
+      const double error = rms_error(with_beams(scene, points, settings), reference.value);
       std::printf(" %.2f |", error);
       by_split[k].x.push_back(sigma);
       by_split[k].y.push_back(error);
@@ -174,27 +155,15 @@ int main(int argc, char** argv) {
       "|---|---|---|\n");
   {
     const rad::Scene scene = ring(40, 0.1, true);
-    const rad::PathTracer tracer(scene);
-    std::vector<rad::Rgb> reference(points.size()), shifted(points.size());
-    tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-      const rad::PathTraceEstimate e = tracer.irradiance(points[i].x, points[i].n, paths, i);
-      reference[i] = e.mean;
-      shifted[i] = e.mean + e.standard_error;
-    });
+    const rad::bench::Reference reference =
+        rad::bench::trace_reference(rad::PathTracer(scene), points, paths);
     for (const int light_split : {1, 2, 4, 8}) {
-      rad::LocalPassSettings settings;
-      settings.glossy.light_split = light_split;
-      const rad::LocalPass pass(scene, rad::faces_from_polygons(scene), rad::Method::vertex,
-                                settings);
-      std::vector<rad::Rgb> value(points.size());
-      tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-        const rad::LocalPassResult r = pass.gather(points[i].x, points[i].n, 0);
-        value[i] = r.irradiance + r.glossy;
-      });
+      rad::GlossySettings settings;
+      settings.light_split = light_split;
       std::printf("| %d | %d | %.2f |\n", light_split, 2 * light_split * light_split,
-                  rms_error(value, reference));
+                  rms_error(with_beams(scene, points, settings), reference.value));
     }
-    std::printf("\nThe reference's own standard error: %.2f%%.\n", rms_error(shifted, reference));
+    std::printf("\nThe reference's own standard error: %.2f%%.\n", reference.noise);
   }
 
   std::printf(

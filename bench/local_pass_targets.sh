@@ -8,6 +8,7 @@
 # Usage: bash bench/local_pass_targets.sh [BUILD_DIR]   (a build with -DRAD_BUILD_BENCH=ON)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 out=bench/results/local_pass_targets.md
 tmp=$(mktemp)
@@ -16,9 +17,7 @@ trap 'rm -f "$tmp"' EXIT
   echo "# The local pass against issue 15's targets"
   echo
   echo "Produced by \`bash bench/local_pass_targets.sh $build\`."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD)"
+  provenance geometry scene hemisphere vertex radiosity octree localpass formats render experiments viz cli
   echo
   echo "Seconds are the render's own (rays and gathers, all cores; scene loading and the solve left"
   echo "out), one run each, all in one run of this script. Errors are relative, per pixel on the"

@@ -6,13 +6,11 @@
 # Usage: bash bench/refraction.sh [BUILD_DIR] [PATHS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 paths=${2:-400000}
 out=bench/results
 mkdir -p "$out" docs/images
-dirty=""
-[ -z "$(git status --porcelain -- geometry scene localpass data/refraction bench/refraction_bench.cpp 2>/dev/null)" ] \
-  || dirty=" plus uncommitted changes"
 table=$("$build/bench/refraction_bench" docs/images/refraction-knob.png docs/images/refraction-cost.png "$paths")
 {
   echo "# The refraction heuristic against the path tracer"
@@ -31,9 +29,7 @@ table=$("$build/bench/refraction_bench" docs/images/refraction-knob.png docs/ima
   echo "The charts:"
   echo "[error against the knob](../../docs/images/refraction-knob.png),"
   echo "[error against time](../../docs/images/refraction-cost.png)."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
+  provenance geometry scene localpass data/refraction bench/refraction_bench.cpp bench/heuristic_measures.h
   echo
   echo "$table"
 } > "$out/refraction.md"

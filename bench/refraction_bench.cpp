@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/heuristic_measures.h"
 #include "formats/points_csv.h"
 #include "localpass/local_pass.h"
 #include "localpass/path_tracer.h"
@@ -32,57 +33,8 @@
 #include "scene/scene_loader.h"
 #include "viz/charts.h"
 
-namespace {
-
-struct Reference {
-  std::vector<rad::Rgb> value, standard_error;
-};
-
-Reference trace(const rad::Scene& scene, const std::vector<rad::ProbePoint>& points,
-                bool interface_reflections, int paths) {
-  const rad::PathTracer tracer(scene, interface_reflections);
-  Reference r{std::vector<rad::Rgb>(points.size()), std::vector<rad::Rgb>(points.size())};
-  tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-    const rad::PathTraceEstimate e = tracer.irradiance(points[i].x, points[i].n, paths, i);
-    r.value[i] = e.mean;
-    r.standard_error[i] = e.standard_error;
-  });
-  return r;
-}
-
-/// RMS of (value - reference) / mean reference, over points and channels, in %.
-double rms_error(const std::vector<rad::Rgb>& value, const std::vector<rad::Rgb>& reference) {
-  rad::Rgb mean = rad::Rgb::Zero();
-  for (const rad::Rgb& r : reference) mean += r;
-  mean /= static_cast<double>(reference.size());
-  double sum = 0;
-  for (size_t i = 0; i < value.size(); ++i) {
-    const rad::Rgb e = (value[i] - reference[i]).cwiseQuotient(mean);
-    sum += e.squaredNorm();
-  }
-  return 100 * std::sqrt(sum / (3.0 * static_cast<double>(value.size())));
-}
-
-/// The median over repeated runs of `run` in seconds: at least 3 runs, more while the total
-/// stays under a second (a shared machine's noise swamps a single run of milliseconds); a run
-/// of 10 s or more is timed once (the bench would otherwise take an hour).
-template <class Run>
-double median_seconds(const Run& run) {
-  std::vector<double> times;
-  double total = 0;
-  while (times.size() < 3 || total < 1.0) {
-    const auto start = std::chrono::steady_clock::now();
-    run();
-    times.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    total += times.back();
-    if (times.back() >= 10.0) break;
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
-
-}  // namespace
+using rad::bench::median_seconds;
+using rad::bench::rms_error;
 
 int main(int argc, char** argv) {
   const std::string data = std::string(RAD_SOURCE_DIR) + "/data/refraction/";
@@ -108,20 +60,15 @@ int main(int argc, char** argv) {
         if (m.refracts()) m.refraction->fresnel = fresnel;
       }
       const std::vector<rad::ProbePoint> points = rad::read_points_csv(data + name + "-points.csv");
-      const Reference model = trace(scene, points, false, paths);
+      const rad::bench::Reference model =
+          rad::bench::trace_reference(rad::PathTracer(scene, false), points, paths);
       rad::Scene deep = scene;
       deep.refraction_depth = 8;
-      const Reference physics = trace(deep, points, true, paths);
-      double noise = 0;  // the references' own error, in the same measure
-      {
-        std::vector<rad::Rgb> shifted;
-        for (size_t i = 0; i < points.size(); ++i)
-          shifted.push_back(model.value[i] + model.standard_error[i]);
-        noise = rms_error(shifted, model.value);
-      }
+      const rad::bench::Reference physics =
+          rad::bench::trace_reference(rad::PathTracer(deep, true), points, paths);
       const std::string label = name + (fresnel ? ", Fresnel" : "");
       std::printf("\n## %s (%zu floor points; the model reference's standard error %.2f%%)\n\n",
-                  label.c_str(), points.size(), noise);
+                  label.c_str(), points.size(), model.noise);
       std::printf(
           "| --refraction-tolerance | seconds | x opaque | images gathered | RMS error vs the "
           "model "

@@ -7,13 +7,10 @@ build=${1:-build}
 out=bench/results
 mkdir -p "$out"
 
+source bench/provenance.sh
 machine() {
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  local dirty=""
-  [ -z "$(git status --porcelain -- geometry scene hemisphere vertex radiosity octree localpass formats render experiments viz cli bench/*.cpp 2>/dev/null)" ] \
-    || dirty=" plus uncommitted changes"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
+  provenance geometry scene hemisphere vertex radiosity octree localpass formats render experiments \
+    viz cli "bench/*.cpp"
 }
 
 # Ray casting (Cornell box, 20 polygons)

@@ -7,6 +7,7 @@
 # Usage: bash bench/solve_versus.sh [BUILD_DIR] [BASE_COMMIT] [PAIRS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 base=${2:-ee5828c}
 pairs=${3:-8}
@@ -23,9 +24,6 @@ if [ ! -x "$base_dir/build/cli/radiosity" ]; then
     -DRAD_BUILD_BENCH=OFF >/dev/null
   cmake --build "$base_dir/build" --target radiosity -j2 >/dev/null
 fi
-dirty=""
-[ -z "$(git status --porcelain -- geometry scene radiosity cli 2>/dev/null)" ] \
-  || dirty=" plus uncommitted changes"
 table=$(python3 - "$base_dir/build/cli/radiosity" "$build/cli/radiosity" "$pairs" "$scene" <<'PY'
 import os, statistics, subprocess, sys, tempfile, time
 
@@ -69,9 +67,7 @@ PY
   echo "Produced by \`bash bench/solve_versus.sh $build $base $pairs\`: \`radiosity solve $scene\`"
   echo "at default settings on all cores, the earlier commit's binary (\`$base\`) and this one's run"
   echo "back to back in each pair. Ratios are new / base (below 1: faster); CPU is user + system."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
+  provenance geometry scene radiosity cli
   echo
   echo "$table"
 } > "$out/solve_versus.md"

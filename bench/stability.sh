@@ -4,18 +4,14 @@
 # (or: make stability; make bench runs it too).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/provenance.sh
 build=${1:-build}
 out=bench/results/stability.md
 {
   echo "# Stability: the degenerate scene families through both exact gatherers and Monte Carlo"
   echo
   echo "Produced by \`make stability\` (\`$build/bench/stability_bench\`), one thread."
-  echo "- machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
-  echo "- date: $(date -u +%Y-%m-%d)"
-  dirty=""
-  [ -z "$(git status --porcelain -- geometry scene hemisphere vertex localpass bench/stability_bench.cpp tests/random_scenes.h 2>/dev/null)" ] \
-    || dirty=" plus uncommitted changes"
-  echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$dirty"
+  provenance geometry scene hemisphere vertex localpass bench/stability_bench.cpp tests/random_scenes.h
   echo
   echo "Direct light: every polygon occludes from both sides, the lamps emit. Seeded scenes (seed"
   echo "100000 x family + scene); each row gathers at every site of every scene with the hemisphere"

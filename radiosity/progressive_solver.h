@@ -57,30 +57,20 @@ class ProgressiveSolver {
     // (A mirror's specular part goes on too: its images deliver it. A glossy surface's leaves
     // the solution: redirects.)
     const bool passes_on = scene_.mirror_depth > 0 || m.is_glossy_mirror();
-    return Rgb::Ones() - m.transmittance - m.glossy_transmittance -
-           (passes_on ? m.specular : Rgb::Zero());
+    return Rgb::Ones() - m.transmittance - (passes_on ? m.specular : Rgb::Zero());
   }
-  /// The same at a polygon's back, which reflects nothing: what a filter or a roughened pane
-  /// does not pass on.
-  Rgb stays_at_back(int polygon) const {
-    const Material& m = material(polygon);
-    return Rgb::Ones() - m.transmittance - m.glossy_transmittance;
-  }
-  /// The part of the light arriving at a polygon's front that a glossy surface reflects into
-  /// its lobe: the ledger's "redirected", which the solution does not carry (paper 003).
+  /// The part of the light arriving at a polygon's front that a glossy mirror reflects into
+  /// its lobe: the ledger's "redirected", which the solution does not carry (paper 003). (A
+  /// roughened pane reaches the solver as a filter: solve() in solver.cpp.)
   Rgb redirects(int polygon) const {
     const Material& m = material(polygon);
-    return (m.is_glossy_mirror() ? m.specular : Rgb::Zero()) + m.glossy_transmittance;
+    return m.is_glossy_mirror() ? m.specular : Rgb::Zero();
   }
-  /// What a roughened pane passes into its lobe from light at its back.
-  Rgb redirects_at_back(int polygon) const { return material(polygon).glossy_transmittance; }
   /// A filter's back neither reflects nor emits (one-sided, DESIGN §3) but absorbs what it does
   /// not pass on: the ledger asks its elements what reaches their backs too. Opaque polygons'
   /// backs stay unasked (in a closed scene nothing reaches them; in an open one, what does is
   /// counted as escaped).
-  bool absorbs_at_back(int polygon) const {
-    return material(polygon).is_filter() || material(polygon).is_glossy_pane();
-  }
+  bool absorbs_at_back(int polygon) const { return material(polygon).is_filter(); }
   Rgb back_ff(const Element& el, const Patch& source, uint64_t key) const {
     return rays_.visible_form_factor(el.centroid, -solution_.patches[el.patch].normal, el.polygon,
                                      source, key);

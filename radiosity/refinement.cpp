@@ -167,13 +167,11 @@ void ProgressiveSolver::regather(const std::vector<int>& children) {
     stats().escaped -= (stays(el.polygon) + redirects(el.polygon)).cwiseProduct(power);
     stats().redirected += redirects(el.polygon).cwiseProduct(power);
     if (absorbs_at_back(el.polygon)) {
-      const Rgb change = (back[k] - back_irradiance_[children[k]]) * el.area;
-      const Rgb back_power = stays_at_back(el.polygon).cwiseProduct(change);
-      const Rgb back_redirected = redirects_at_back(el.polygon).cwiseProduct(change);
+      const Rgb back_power =
+          stays(el.polygon).cwiseProduct(back[k] - back_irradiance_[children[k]]) * el.area;
       back_irradiance_[children[k]] = back[k];
       stats().absorbed += back_power;
-      stats().redirected += back_redirected;
-      stats().escaped -= back_power + back_redirected;
+      stats().escaped -= back_power;
     }
     Patch& owner = patches()[el.patch];
     owner.unshot += rho.cwiseProduct(power) / live_area_[el.patch];

@@ -98,11 +98,9 @@ void ProgressiveSolver::shoot_point_lights() {
     stats().absorbed += (stay - rho).cwiseProduct(front[e]) * el.area;
     kept += stay.cwiseProduct(front[e]) * el.area;
     back_irradiance_[e] = back[e];
-    stats().absorbed += stays_at_back(el.polygon).cwiseProduct(back[e]) * el.area;
-    kept += stays_at_back(el.polygon).cwiseProduct(back[e]) * el.area;
-    const Rgb redirected = (redirects(el.polygon).cwiseProduct(front[e]) +
-                            redirects_at_back(el.polygon).cwiseProduct(back[e])) *
-                           el.area;
+    stats().absorbed += stay.cwiseProduct(back[e]) * el.area;
+    kept += stay.cwiseProduct(back[e]) * el.area;
+    const Rgb redirected = redirects(el.polygon).cwiseProduct(front[e]) * el.area;
     stats().redirected += redirected;
     kept += redirected;
   }
@@ -257,11 +255,10 @@ std::pair<int, Rgb> ProgressiveSolver::take_in(int e, const Rgb& delta, const Rg
   redirected += redirects(el.polygon).cwiseProduct(irradiance) * el.area;
   if (at_back) {
     const Rgb back = delta.cwiseProduct(back_ff_[e]);
-    const Rgb taken = stays_at_back(el.polygon).cwiseProduct(back) * el.area;
+    const Rgb taken = stays(el.polygon).cwiseProduct(back) * el.area;
     back_irradiance_[e] += back;
     kept += taken;
     absorbed += taken;
-    redirected += redirects_at_back(el.polygon).cwiseProduct(back) * el.area;
   }
   leaf_unshot_[e] += reflected;
   return {el.patch, reflected * (el.area / live_area_[el.patch])};
@@ -307,6 +304,25 @@ Rgb ProgressiveSolver::stored_form_factor(int shooter, int e, uint64_t key) {
   return ff;
 }
 
+namespace {
+
+/// The scene with every roughened pane a plain filter of its glossy transmittance; nothing when
+/// it has none.
+std::optional<Scene> panes_as_filters(const Scene& scene) {
+  if (std::none_of(scene.materials.begin(), scene.materials.end(),
+                   [](const Material& m) { return m.is_glossy_pane(); }))
+    return std::nullopt;
+  Scene out = scene;
+  for (Material& m : out.materials) {
+    if (!m.is_glossy_pane()) continue;
+    m.transmittance = m.glossy_transmittance;
+    m.glossy_transmittance = Rgb::Zero();
+  }
+  return out;
+}
+
+}  // namespace
+
 Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress) {
   settings.validate();
@@ -315,19 +331,9 @@ Solution solve(const RayCaster& caster, const SolverSettings& settings,
   // patches its blur matters little, and a pane in front of a lamp would otherwise take most of
   // the scene's light out of the solution. (Glossy mirrors are not carried: their chains of
   // images cost too much on a curved mesh; the ledger's `redirected` counts them.)
-  std::optional<Scene> carried;
+  const std::optional<Scene> carried = panes_as_filters(caster.scene());
   std::optional<RayCaster> carried_caster;
-  for (const Material& m : caster.scene().materials) {
-    if (!m.is_glossy_pane()) continue;
-    carried.emplace(caster.scene());
-    for (Material& c : carried->materials) {
-      if (!c.is_glossy_pane()) continue;
-      c.transmittance = c.glossy_transmittance;
-      c.glossy_transmittance = Rgb::Zero();
-    }
-    carried_caster.emplace(*carried);
-    break;
-  }
+  if (carried) carried_caster.emplace(*carried);
   ProgressiveSolver solver(carried_caster ? *carried_caster : caster, settings);
   solver.shoot_until_converged(progress);
   for (int pass = 0; pass < settings.refine_passes; ++pass) {

@@ -18,6 +18,27 @@ def provenance(lines, *prefixes):
     return [line for line in lines if line.startswith(("- machine", "- commit") + prefixes)]
 
 
+def bench_tables(out, path, title, intro, prefixes, charts):
+    """A benchmark file's section of this page, if the file exists: the title, the intro, where
+    it ran, each of its headings one level down with its tables, and its charts side by side."""
+    if not os.path.exists(path):
+        return
+    lines = open(path).read().split("\n")
+    out.extend([title, ""] + intro + [""])
+    out.extend(provenance(lines, *prefixes))
+    out.append("")
+    for line in lines:
+        if line.startswith("## "):
+            out.extend(["#" + line, ""])
+        elif line.startswith("|"):
+            out.append(line)
+        elif line == "" and out and out[-1].startswith("|"):
+            out.append("")
+    out.append("| " + " | ".join(f"![{alt}]({src})" for alt, src in charts) + " |")
+    out.append("|" + "---|" * len(charts))
+    out.append("")
+
+
 def fmt(value, digits=3):
     return f"{float(value):.{digits}g}"
 
@@ -139,53 +160,25 @@ def main():
         table = [line for line in lines if line.startswith("|")]
         out.extend(table[:2] + [line for line in table if "median" in line])
         w("")
-    if os.path.exists("bench/results/refraction.md"):
-        lines = open("bench/results/refraction.md").read().split("\n")
-        w("## Refraction: the heuristic against the path tracer")
-        w("")
-        w("From [`bench/results/refraction.md`](../bench/results/refraction.md)")
-        w("(`bash bench/refraction.sh`): paper 000 §4's apparent-depth heuristic at each setting of")
-        w("`--refraction-tolerance` on the scenes of `data/refraction/` (floor points beside a glass")
-        w("block, a dispersive prism, a flat and a rippled pool under the lamp of a black room), against")
-        w("the path tracer of the heuristic's model (reflections at interfaces dropped) and of the")
-        w("physics. What limits it: [algorithms.md](algorithms.md#refraction-through-polyhedra-paper-000-4-a-heuristic-kept-apart).")
-        w("")
-        out.extend(provenance(lines, "References"))
-        w("")
-        for line in lines:
-            if line.startswith("## "):
-                w("#" + line)
-                w("")
-            elif line.startswith("|"):
-                w(line)
-            elif line == "" and out and out[-1].startswith("|"):
-                w("")
-        w("| ![error against the knob](images/refraction-knob.png) | ![error against time](images/refraction-cost.png) |")
-        w("|---|---|")
-        w("")
-    if os.path.exists("bench/results/glossy.md"):
-        lines = open("bench/results/glossy.md").read().split("\n")
-        w("## Glossy transfer: the beams against the path tracer")
-        w("")
-        w("From [`bench/results/glossy.md`](../bench/results/glossy.md) (`bash bench/glossy.sh`): paper")
-        w("003's backward beams on the ring of `data/glossy-ring/` (black floor) at each lobe spread")
-        w("and `--glossy-split`, against the path tracer, which samples the lobes; and the glossy")
-        w("gather's time against the number of scatterer triangles, with the cone hierarchy and")
-        w("without. What limits it: [algorithms.md](algorithms.md#glossy-transfer-by-backward-beams-paper-003-a-heuristic-kept-apart).")
-        w("")
-        out.extend(provenance(lines))
-        w("")
-        for line in lines:
-            if line.startswith("## "):
-                w("#" + line)
-                w("")
-            elif line.startswith("|"):
-                w(line)
-            elif line == "" and out and out[-1].startswith("|"):
-                w("")
-        w("| ![error against sigma](images/glossy-sigma.png) | ![time against triangles](images/glossy-cost.png) |")
-        w("|---|---|")
-        w("")
+    bench_tables(out, "bench/results/refraction.md",
+                 "## Refraction: the heuristic against the path tracer", [
+        "From [`bench/results/refraction.md`](../bench/results/refraction.md)",
+        "(`bash bench/refraction.sh`): paper 000 §4's apparent-depth heuristic at each setting of",
+        "`--refraction-tolerance` on the scenes of `data/refraction/` (floor points beside a glass",
+        "block, a dispersive prism, a flat and a rippled pool under the lamp of a black room), against",
+        "the path tracer of the heuristic's model (reflections at interfaces dropped) and of the",
+        "physics. What limits it: [algorithms.md](algorithms.md#refraction-through-polyhedra-paper-000-4-a-heuristic-kept-apart).",
+    ], ["References"], [("error against the knob", "images/refraction-knob.png"),
+                        ("error against time", "images/refraction-cost.png")])
+    bench_tables(out, "bench/results/glossy.md",
+                 "## Glossy transfer: the beams against the path tracer", [
+        "From [`bench/results/glossy.md`](../bench/results/glossy.md) (`bash bench/glossy.sh`): paper",
+        "003's backward beams on the ring of `data/glossy-ring/` (black floor) at each lobe spread",
+        "and `--glossy-split`, against the path tracer, which samples the lobes; and the glossy",
+        "gather's time against the number of scatterer triangles, with the cone hierarchy and",
+        "without. What limits it: [algorithms.md](algorithms.md#glossy-transfer-by-backward-beams-paper-003-a-heuristic-kept-apart).",
+    ], [], [("error against sigma", "images/glossy-sigma.png"),
+            ("time against triangles", "images/glossy-cost.png")])
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")

@@ -30,8 +30,9 @@ const Vec3 kLight(-0.5, 0.2, 0.4);
 const Vec3 kUp(0, 0, 1);
 
 /// The beams of t split into n^2 similar triangles (midpoint subdivision, normals interpolated),
-/// summed at f.
-Rgb subdivided(const GlossyTriangle& t, int n, double sigma, const Vec3& f, const Vec3& normal) {
+/// summed at f: a light at `light` of unit intensity, specular weight `weight`.
+Rgb subdivided(const GlossyTriangle& t, int n, double sigma, const Vec3& f, const Vec3& normal,
+               const Vec3& light = kLight, const Rgb& weight = Rgb::Ones()) {
   const auto& v = t.vertex;
   const auto at = [&](double i, double j) {
     const double a = i / n, b = j / n;
@@ -44,7 +45,7 @@ Rgb subdivided(const GlossyTriangle& t, int n, double sigma, const Vec3& f, cons
     piece.vertex = {p.first, q.first, r.first};
     piece.normal = {p.second, q.second, r.second};
     piece.transmits = t.transmits;
-    sum += GlossyBeam(kLight, Rgb::Ones(), piece, Rgb::Ones(), sigma).irradiance(f, normal);
+    sum += GlossyBeam(light, Rgb::Ones(), piece, weight, sigma).irradiance(f, normal);
   };
   for (int i = 0; i < n; ++i) {
     for (int j = 0; i + j < n; ++j) {
@@ -104,22 +105,7 @@ TEST(GlossyBeam, SharpLobesTendToTheMirrorImageOfTheLight) {
   for (const Vec3& f : {Vec3(1.19, -0.47, 0), Vec3(1.0, -0.5, 0), Vec3(1.5, -0.6, 0)}) {
     const Vec3 to = image - f;
     const Rgb mirror = weight * (to.z() / std::pow(to.norm(), 3));
-    Rgb sum = Rgb::Zero();
-    const int n = 64;
-    const auto& v = t.vertex;
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; i + j < n; ++j) {
-        const auto at = [&](double a, double b) {
-          return (1 - a / n - b / n) * v[0] + a / n * v[1] + b / n * v[2];
-        };
-        const auto beam = [&](const Vec3& p, const Vec3& q, const Vec3& r) {
-          GlossyTriangle piece{{p, q, r}, t.normal, false};
-          return GlossyBeam(kLight, Rgb::Ones(), piece, weight, 1e-4).irradiance(f, kUp);
-        };
-        sum += beam(at(i, j), at(i + 1, j), at(i, j + 1));
-        if (i + j + 1 < n) sum += beam(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-      }
-    }
+    const Rgb sum = subdivided(t, 64, 1e-4, f, kUp, kLight, weight);
     EXPECT_LE((sum - mirror).cwiseAbs().maxCoeff(), 1e-2 * mirror.maxCoeff())
         << "at " << f.transpose() << ": " << sum.transpose() << " against " << mirror.transpose();
   }
@@ -212,7 +198,7 @@ TEST(GlossyBeam, DegenerateConfigurationsStayFiniteAndPhysical) {
 TEST(GlossyBeam, AFocusingBeamStaysFiniteAtItsFocus) {
   // Vertex normals tilted to the bisectors of the light and a focus Q: the three rays meet at
   // Q, the flux triangle collapses there, and E takes the limit Phi_s cos rho(0) / d^2; near
-  // Q the model stays within a factor of 2 of the physics (measured: 0.8% over it at Q and
+  // Q the model stays within 0.9 to 1.4 times the physics (measured: 0.8% over it at Q and
   // 1e-7 from it; 0.01 from it, 2.08 times the physics without the clamp at the lobe's peak
   // density, 1.30 times with it).
   GlossyTriangle t = ceiling_triangle(0.3);
@@ -226,8 +212,8 @@ TEST(GlossyBeam, AFocusingBeamStaysFiniteAtItsFocus) {
     const double e = beam.irradiance(f, kUp)[0];
     const double physics = test::GlossyCubature(beam, f, kUp).integrate(1e-10);
     EXPECT_TRUE(std::isfinite(e) && e > 0) << "at " << f.transpose();
-    EXPECT_GT(e, 0.5 * physics) << "at " << f.transpose();
-    EXPECT_LT(e, 2 * physics) << "at " << f.transpose();
+    EXPECT_GT(e, 0.9 * physics) << "at " << f.transpose();
+    EXPECT_LT(e, 1.4 * physics) << "at " << f.transpose();
   }
 }
 
@@ -243,23 +229,7 @@ TEST(GlossyBeam, ARoughenedPaneSendsItsLightOnThroughItAndConverges) {
   for (const Vec3& f : {Vec3(0.0, -0.1, 0), Vec3(0.3, 0.2, 0), Vec3(0.8, -0.5, 0)}) {
     const double physics = test::GlossyCubature(beam, f, kUp).integrate(1e-10);
     ASSERT_GT(physics, 1e-4);
-    double split = 0;
-    const int n = 48;
-    const auto& v = t.vertex;
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; i + j < n; ++j) {
-        const auto at = [&](double a, double b) {
-          return (1 - a / n - b / n) * v[0] + a / n * v[1] + b / n * v[2];
-        };
-        const auto piece = [&](const Vec3& p, const Vec3& q, const Vec3& r) {
-          return GlossyBeam(above, Rgb::Ones(), GlossyTriangle{{p, q, r}, t.normal, true},
-                            Rgb::Ones(), 0.1)
-              .irradiance(f, kUp)[0];
-        };
-        split += piece(at(i, j), at(i + 1, j), at(i, j + 1));
-        if (i + j + 1 < n) split += piece(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-      }
-    }
+    const double split = subdivided(t, 48, 0.1, f, kUp, above)[0];
     EXPECT_NEAR(split / physics, 1, 0.13) << "at " << f.transpose();
   }
 }

@@ -47,6 +47,21 @@ Scene glossy_scene(double sigma, bool card = false) {
 const Vec3 kFloor[] = {Vec3(0.9, -0.1, 0), Vec3(0.6, 0.2, 0), Vec3(1.2, 0.3, 0), Vec3(1.6, -0.5, 0),
                        Vec3(0.3, 0.0, 0)};
 
+/// The physics of a glossy polygon (each of its triangles integrated by the cubature) at x on
+/// the floor, per unit intensity and weight: reflected, or passed through (a pane).
+double physics_of(const Polygon& polygon, const Vec3& light, double sigma, const Vec3& x,
+                  bool transmits) {
+  double physics = 0;
+  for (const auto& [a, b, c] : triangulate(project_to_plane(polygon.vertices, polygon.normal))) {
+    const GlossyTriangle t{{polygon.vertices[a], polygon.vertices[b], polygon.vertices[c]},
+                           {polygon.normal, polygon.normal, polygon.normal},
+                           transmits};
+    physics += test::GlossyCubature(GlossyBeam(light, Rgb::Ones(), t, Rgb::Ones(), sigma), x, kUp)
+                   .integrate(1e-10);
+  }
+  return physics;
+}
+
 TEST(GlossyTransfer, TheHierarchyWithoutACutIsEveryBeam) {
   // The cones widened without end cull nothing the beams would send: the same sum as every
   // beam at every receiver, to rounding; with the default cut at 5 sigma, what is dropped is
@@ -124,14 +139,7 @@ TEST(GlossyTransfer, TheLocalPassKeepsItApartAndNearThePhysics) {
   const LocalPass pass(scene, faces_from_polygons(scene), Method::vertex, settings);
   for (const Vec3& x : kFloor) {
     const LocalPassResult r = pass.gather(x, kUp, 0);
-    double physics = 0;
-    const Polygon& square = scene.polygons[1];
-    for (const auto& [a, b, c] : triangulate(project_to_plane(square.vertices, square.normal))) {
-      const GlossyTriangle t{{square.vertices[a], square.vertices[b], square.vertices[c]},
-                             {square.normal, square.normal, square.normal}};
-      const GlossyBeam beam(kLight, Rgb::Ones(), t, Rgb::Ones(), sigma);
-      physics += test::GlossyCubature(beam, x, kUp).integrate(1e-10);
-    }
+    const double physics = physics_of(scene.polygons[1], kLight, sigma, x, false);
     const Rgb expected = kIntensity.cwiseProduct(kSpecular) * physics;
     for (int ch = 0; ch < 3; ++ch)
       EXPECT_NEAR(r.glossy[ch] / expected[ch], 1, 0.13) << "at " << x.transpose();
@@ -155,15 +163,7 @@ TEST(GlossyTransfer, ThePathTracerSamplesTheLobeAndMeetsThePhysics) {
     const PathTracer tracer(scene);
     uint64_t seed = 0;
     for (const Vec3& x : {Vec3(0.9, -0.1, 0), Vec3(1.2, 0.3, 0), Vec3(0.6, 0.2, 0)}) {
-      double physics = 0;
-      const Polygon& square = scene.polygons[1];
-      for (const auto& [a, b, c] : triangulate(project_to_plane(square.vertices, square.normal))) {
-        const GlossyTriangle t{{square.vertices[a], square.vertices[b], square.vertices[c]},
-                               {square.normal, square.normal, square.normal}};
-        physics +=
-            test::GlossyCubature(GlossyBeam(kLight, Rgb::Ones(), t, Rgb::Ones(), sigma), x, kUp)
-                .integrate(1e-10);
-      }
+      const double physics = physics_of(scene.polygons[1], kLight, sigma, x, false);
       const Vec3 to = kLight - x;
       const Rgb direct = kIntensity * (to.z() / std::pow(to.norm(), 3));
       PathTraceEstimate e = tracer.irradiance(x, kUp, 2000000, ++seed);
@@ -190,19 +190,6 @@ Scene pane_scene(double sigma) {
   return b.scene();
 }
 
-double pane_physics(const Scene& scene, double sigma, const Vec3& x) {
-  double physics = 0;
-  const Polygon& pane = scene.polygons[1];
-  for (const auto& [a, b, c] : triangulate(project_to_plane(pane.vertices, pane.normal))) {
-    const GlossyTriangle t{{pane.vertices[a], pane.vertices[b], pane.vertices[c]},
-                           {pane.normal, pane.normal, pane.normal},
-                           true};
-    physics += test::GlossyCubature(GlossyBeam(kAbove, Rgb::Ones(), t, Rgb::Ones(), sigma), x, kUp)
-                   .integrate(1e-10);
-  }
-  return physics;
-}
-
 TEST(GlossyTransfer, ARoughenedPanePassesTheLightThroughItsLobeOnly) {
   // 003 Fig. 13: the pane is opaque to straight lines (no direct light under it, the certified
   // part 0 there), and what it passes comes by the beams, within the model's 13% of the physics
@@ -218,7 +205,8 @@ TEST(GlossyTransfer, ARoughenedPanePassesTheLightThroughItsLobeOnly) {
   for (const Vec3& x : {Vec3(0.25, 0.1, 0), Vec3(0.0, -0.2, 0), Vec3(-0.3, 0.3, 0)}) {
     const LocalPassResult r = pass.gather(x, kUp, 0);
     EXPECT_EQ(r.irradiance, Rgb::Zero()) << "the pane hides the light from straight lines";
-    const Rgb expected = kIntensity.cwiseProduct(kPane) * pane_physics(scene, sigma, x);
+    const Rgb expected =
+        kIntensity.cwiseProduct(kPane) * physics_of(scene.polygons[1], kAbove, sigma, x, true);
     for (int ch = 0; ch < 3; ++ch)
       EXPECT_NEAR(r.glossy[ch] / expected[ch], 1, 0.13) << "at " << x.transpose();
     EXPECT_TRUE(test::within(tracer.irradiance(x, kUp, 400000, ++seed), expected, 0.05, 1e-6))
