@@ -20,8 +20,8 @@ bool strict_scenes = false;
 
 void set_strict(bool strict) { strict_scenes = strict; }
 
-Scene load_scene_reporting(const std::string& path) {
-  Scene scene = load_scene(path);
+Scene load_scene_reporting(const std::string& path, InputFiles* files) {
+  Scene scene = load_scene(path, files);
   if (strict_scenes && !scene.warnings.empty())
     throw InputError(scene.warnings.front() + " (--strict: warnings are errors)");
   for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";

@@ -10,6 +10,7 @@
 #include "localpass/local_pass.h"
 #include "radiosity/solution.h"
 #include "scene/camera.h"
+#include "scene/input_files.h"
 #include "scene/scene.h"
 
 namespace rad::cli {
@@ -39,8 +40,8 @@ void add_threads_option(CLI::App* sub, int* threads);
 void set_strict(bool strict);
 
 /// Loads and validates a scene, printing its warnings to stderr; with --strict the first
-/// warning is thrown as an InputError instead.
-Scene load_scene_reporting(const std::string& path);
+/// warning is thrown as an InputError instead. With `files`, as load_scene (scene/input_files.h).
+Scene load_scene_reporting(const std::string& path, InputFiles* files = nullptr);
 
 /// Reads a solution file and checks that it was solved for `scene` (loaded from
 /// `scene_path`). Throws InputError naming the file otherwise.

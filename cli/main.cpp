@@ -2,7 +2,12 @@
 //
 // Exit codes: 0 success; 1 runtime error (bad input file, I/O), with one line on stderr naming
 // the problem; 2 usage error (unknown option, missing argument).
+//
+// Under mpirun (docs/cluster.md) every process runs main: render, probe and sweep split their
+// work over all of them (distributed/job.h); the other commands run on the root alone. Only the
+// root prints and writes; the others' stdout and stderr are muted.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -10,6 +15,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "distributed/job.h"
 #include "scene/error.h"
 
 namespace {
@@ -34,9 +40,47 @@ std::string one_line(const std::string& message) {
   return out;
 }
 
+/// Runs the chosen command; returns the exit status, having printed the one line of a failure.
+int run_command(const rad::Job& job, const rad::cli::Run& run, bool distributed) {
+  try {
+    if (distributed) {
+      // One last agreement: a failure on one process (an output the root could not write,
+      // say) ends every process with status 1 and the root's one line.
+      job.step(run);
+    } else {
+      run();
+    }
+  } catch (const rad::AgreedFailure& e) {
+    if (!e.quiet()) std::cerr << "radiosity: error: " << one_line(e.what()) << "\n";
+    return 1;
+  } catch (const rad::Error& e) {
+    std::cerr << "radiosity: error: " << one_line(e.what()) << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "radiosity: error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "radiosity: unexpected error: " << one_line(e.what()) << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+/// A stream buffer that drops what is written to it: the non-root processes' stdout and stderr.
+class Muted : public std::streambuf {
+ protected:
+  int overflow(int c) override { return traits_type::not_eof(c); }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const rad::Job job(&argc, &argv);
+  static Muted muted;  // outlives main: the streams flush at exit
+  if (!job.is_root()) {
+    std::cout.rdbuf(&muted);
+    std::cerr.rdbuf(&muted);
+  }
   CLI::App app{
       "radiosity: progressive radiosity with an exact, error-bounded local pass.\n"
       "Results go to files or stdout; progress and messages to stderr.",
@@ -72,17 +116,14 @@ int main(int argc, char** argv) {
   }
 
   rad::cli::set_strict(strict);
-  try {
-    run();
-  } catch (const rad::Error& e) {
-    std::cerr << "radiosity: error: " << one_line(e.what()) << "\n";
-    return 1;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "radiosity: error: out of memory\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "radiosity: unexpected error: " << one_line(e.what()) << "\n";
-    return 1;
-  }
-  return 0;
+  // The commands whose work is split over an MPI job's processes; the others are the root's.
+  bool distributed = false;
+  for (const char* name : {"render", "probe", "sweep"})
+    distributed = distributed || app.got_subcommand(name);
+  int status = 0;
+  if (distributed || job.is_root()) status = run_command(job, run, distributed);
+  // Every process leaves together (the others wait without spinning while the root works,
+  // and the root has printed before any process exits with 1).
+  job.finish();
+  return status;
 }

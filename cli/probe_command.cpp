@@ -2,10 +2,13 @@
 // hemisphere|vertex|montecarlo|pathtrace] [-o OUT.csv]`: exact irradiance at given points: direct
 // lighting only (polygons radiate their emission, all occlude; mirrors reflect it), or from a
 // solution through the error-bounded local pass; or, as the reference, the scene path-traced.
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -14,6 +17,8 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/inputs.h"
+#include "distributed/job.h"
 #include "formats/atomic_file.h"
 #include "formats/points_csv.h"
 #include "formats/solution_io.h"
@@ -74,13 +79,41 @@ PathTraceEstimate traced_to_target(const PathTracer& tracer, const ProbePoint& p
   }
 }
 
+/// The points of `file`, read on the root and sent to every process of `job`.
+std::vector<ProbePoint> read_points_everywhere(const Job& job, const std::string& file) {
+  std::vector<ProbePoint> points;
+  job.step([&] {
+    if (job.is_root()) points = read_points_csv(file);
+  });
+  if (!job.distributed()) return points;
+  std::string bytes;
+  for (const ProbePoint& p : points) {
+    bytes.append(reinterpret_cast<const char*>(p.x.data()), 3 * sizeof(double));
+    bytes.append(reinterpret_cast<const char*>(p.n.data()), 3 * sizeof(double));
+  }
+  bytes = job.broadcast(std::move(bytes));
+  points.resize(bytes.size() / (6 * sizeof(double)));
+  for (size_t i = 0; i < points.size(); ++i) {
+    std::memcpy(points[i].x.data(), bytes.data() + 6 * sizeof(double) * i, 3 * sizeof(double));
+    std::memcpy(points[i].n.data(), bytes.data() + (6 * i + 3) * sizeof(double),
+                3 * sizeof(double));
+  }
+  return points;
+}
+
 void run_probe(const ProbeOptions& o) {
   if (o.target_error > 0 && o.method != "pathtrace")
     throw InputError("--target-error is for --method pathtrace");
+  if (o.method == "pathtrace" && !o.solution.empty())
+    throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
-  const Scene scene = load_scene_reporting(o.scene);
-  const std::vector<ProbePoint> points = read_points_csv(o.points);
+  // Over an MPI job: the inputs and the points read on the root and sent to all, runs of points
+  // handed out as processes free up (distributed/job.h).
+  const Job& job = Job::world();
+  const Inputs inputs = load_inputs(job, o.scene, o.solution);
+  const Scene& scene = inputs.scene;
+  const std::vector<ProbePoint> points = read_points_everywhere(job, o.points);
   std::vector<Rgb> irradiance(points.size());
   std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
   std::vector<Rgb> standard_error;                // the path tracer's
@@ -98,81 +131,131 @@ void run_probe(const ProbeOptions& o) {
   std::function<void(size_t)> gather;
   // The path tracer of the scene itself: no solution, every bounce sampled.
   std::optional<PathTracer> path_tracer;
-  if (o.method == "pathtrace") {
-    if (!o.solution.empty())
-      throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
-    path_tracer.emplace(scene, !o.no_interface_reflections);
-    standard_error.assign(points.size(), Rgb::Zero());
-    gather = [&](size_t i) {
-      const PathTraceEstimate e =
-          traced_to_target(*path_tracer, points[i], o.samples, o.target_error, i);
-      irradiance[i] = e.mean;
-      standard_error[i] = e.standard_error;
-      bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
-    };
-  }
   // Only the chosen method is built (vertex tracing precomputes interpenetrations).
   const Method method = parse_method(o.method).value_or(Method::montecarlo);
   std::unique_ptr<ExactGatherer> direct;
   std::optional<LocalPass> pass;
   std::optional<MonteCarloGatherer> monte_carlo;
-  if (path_tracer) {
-    // set up above
-  } else if (!is_exact(method) && o.solution.empty()) {
-    throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
-  } else if (!o.solution.empty()) {
-    const Solution solution = load_solution_for(scene, o.scene, o.solution);
-    if (!is_exact(method)) {
-      monte_carlo.emplace(scene, faces_from_solution(scene, solution));
+  // Built on every process; a failure on one fails on all (Job::step).
+  job.step([&] {
+    if (o.method == "pathtrace") {
+      path_tracer.emplace(scene, !o.no_interface_reflections);
+      standard_error.assign(points.size(), Rgb::Zero());
       gather = [&](size_t i) {
-        irradiance[i] = monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
+        const PathTraceEstimate e =
+            traced_to_target(*path_tracer, points[i], o.samples, o.target_error, i);
+        irradiance[i] = e.mean;
+        standard_error[i] = e.standard_error;
         bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
       };
-    } else {
-      pass.emplace(scene, faces_from_solution(scene, solution), method, o.settings);
-      gather = [&](size_t i) {
-        const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
-        irradiance[i] = r.irradiance;
-        bound[i] = r.bound.maxCoeff();
-        if (refracts) refracted[i] = r.refracted;
-        if (glossy) glossy_part[i] = r.glossy;
-      };
     }
-  } else {
-    // Both exact methods see the same faces (the polygons, concave ones as triangles). With
-    // mirrors, refraction, point lights or glossy surfaces, the local pass at tolerance 0 (it
-    // unfolds mirrors and refraction: localpass/mirror_images.h, refraction_images.h; adds the
-    // lights and the glossy beams).
-    bool mirrors = false;
-    for (const Polygon& p : scene.polygons)
-      mirrors = mirrors || scene.materials[p.material].is_mirror();
-    if ((mirrors && scene.mirror_depth > 0) || refracts || glossy || !scene.lights.empty()) {
-      pass.emplace(scene, faces_from_polygons(scene), method, o.settings);
-      gather = [&](size_t i) {
-        const LocalPassResult r = pass->gather(points[i].x, points[i].n, 0);
-        irradiance[i] = r.irradiance;
-        if (refracts) refracted[i] = r.refracted;
-        if (glossy) glossy_part[i] = r.glossy;
-      };
+    if (path_tracer) {
+      // set up above
+    } else if (!is_exact(method) && o.solution.empty()) {
+      throw InputError(
+          "--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
+    } else if (inputs.solution) {
+      const Solution& solution = *inputs.solution;
+      if (!is_exact(method)) {
+        monte_carlo.emplace(scene, faces_from_solution(scene, solution));
+        gather = [&](size_t i) {
+          irradiance[i] = monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
+          bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
+        };
+      } else {
+        pass.emplace(scene, faces_from_solution(scene, solution), method, o.settings);
+        gather = [&](size_t i) {
+          const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
+          irradiance[i] = r.irradiance;
+          bound[i] = r.bound.maxCoeff();
+          if (refracts) refracted[i] = r.refracted;
+          if (glossy) glossy_part[i] = r.glossy;
+        };
+      }
     } else {
-      direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
-      gather = [&](size_t i) {
-        irradiance[i] = exact_irradiance(*direct, points[i].x, points[i].n);
-      };
+      // Both exact methods see the same faces (the polygons, concave ones as triangles). With
+      // mirrors, refraction, point lights or glossy surfaces, the local pass at tolerance 0 (it
+      // unfolds mirrors and refraction: localpass/mirror_images.h, refraction_images.h; adds the
+      // lights and the glossy beams).
+      bool mirrors = false;
+      for (const Polygon& p : scene.polygons)
+        mirrors = mirrors || scene.materials[p.material].is_mirror();
+      if ((mirrors && scene.mirror_depth > 0) || refracts || glossy || !scene.lights.empty()) {
+        pass.emplace(scene, faces_from_polygons(scene), method, o.settings);
+        gather = [&](size_t i) {
+          const LocalPassResult r = pass->gather(points[i].x, points[i].n, 0);
+          irradiance[i] = r.irradiance;
+          if (refracts) refracted[i] = r.refracted;
+          if (glossy) glossy_part[i] = r.glossy;
+        };
+      } else {
+        direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
+        gather = [&](size_t i) {
+          irradiance[i] = exact_irradiance(*direct, points[i].x, points[i].n);
+        };
+      }
     }
-  }
+  });
 
   ProgressBar bar("probe");
   std::atomic<size_t> done{0};
   // Each point is independent and written to its own slot: output order and values do not
-  // depend on the thread count.
-  tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-    gather(i);
-    const size_t finished = ++done;
-    if (finished % 256 == 0)
+  // depend on the thread count, nor on the processes of an MPI job.
+  if (!job.distributed()) {
+    tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
+      gather(i);
+      const size_t finished = ++done;
+      if (finished % 256 == 0)
+        bar.update(static_cast<double>(finished) / points.size(),
+                   std::to_string(finished) + " points");
+    });
+  } else {
+    // Runs of points, 8 a process or more, as the tiles of a render (render/irradiance_render.h).
+    const size_t run = std::max<size_t>(1, points.size() / (8 * static_cast<size_t>(job.size())));
+    std::vector<std::vector<Rgb>*> columns{&irradiance};
+    for (std::vector<Rgb>* c : {&standard_error, &refracted, &glossy_part})
+      if (!c->empty()) columns.push_back(c);
+    BlockWork work;
+    work.blocks = (points.size() + run - 1) / run;
+    const auto range = [&](size_t b) {
+      return tbb::blocked_range<size_t>(b * run, std::min(points.size(), (b + 1) * run));
+    };
+    work.compute = [&](size_t b) {
+      tbb::parallel_for(range(b), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) gather(i);
+      });
+    };
+    work.pack = [&](size_t b) {
+      std::string bytes;
+      for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
+        for (const std::vector<Rgb>* c : columns)
+          bytes.append(reinterpret_cast<const char*>((*c)[i].data()), 3 * sizeof(double));
+        bytes.append(reinterpret_cast<const char*>(&bound[i]), sizeof(double));
+      }
+      return bytes;
+    };
+    work.unpack = [&](size_t b, std::string_view bytes) {
+      const size_t per_point = (3 * columns.size() + 1) * sizeof(double);
+      if (bytes.size() != range(b).size() * per_point)
+        throw Error("probe: a run of points came back with the wrong size");
+      const char* at = bytes.data();
+      for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
+        for (std::vector<Rgb>* c : columns) {
+          std::memcpy((*c)[i].data(), at, 3 * sizeof(double));
+          at += 3 * sizeof(double);
+        }
+        std::memcpy(&bound[i], at, sizeof(double));
+        at += sizeof(double);
+      }
+    };
+    work.progress = [&](size_t blocks) {
+      const size_t finished = std::min(points.size(), blocks * run);
       bar.update(static_cast<double>(finished) / points.size(),
                  std::to_string(finished) + " points");
-  });
+    };
+    job.run_blocks(work);
+    if (!job.is_root()) return;
+  }
   bar.finish();
 
   const std::vector<Rgb>* errors = path_tracer ? &standard_error : nullptr;

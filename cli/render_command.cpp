@@ -12,6 +12,8 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/inputs.h"
+#include "distributed/job.h"
 #include "formats/atomic_file.h"
 #include "formats/image_io.h"
 #include "formats/solution_io.h"
@@ -72,7 +74,8 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& i
   out["width"] = image.radiosity.width;
   out["height"] = image.radiosity.height;
   out["seconds"] = seconds;
-  out["threads"] = tbb::this_task_arena::max_concurrency();
+  out["threads"] = tbb::this_task_arena::max_concurrency();  // a process's
+  out["processes"] = Job::world().size();
   out["faces"] = face_count;
   out["octree_leaves"] = leaves;
   out["pixels_gathered"] = summary.pixels;
@@ -154,35 +157,50 @@ void run_render(const RenderOptions& o) {
     throw InputError("--method " + o.method +
                      " needs --solution (a .vtp written by `radiosity solve`)");
   }
-  const Scene scene = load_scene_reporting(o.scene);
-  const CameraSpec spec = camera_for(scene, o.scene, "render", o.width, o.height);
+  if (o.method == "pathtrace" && !o.solution.empty())
+    throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
+  // Over an MPI job the local pass and the path tracer split their tiles over the processes;
+  // the plain renders are the root's alone.
+  const bool split = local || o.method == "pathtrace";
+  if (!split && !Job::world().is_root()) return;
+  const Job& job = split ? Job::world() : Job::alone();
+  const Inputs inputs = load_inputs(job, o.scene, needs_solution ? o.solution : std::string());
+  const Scene& scene = inputs.scene;
+  CameraSpec spec;
+  job.step([&] { spec = camera_for(scene, o.scene, "render", o.width, o.height); });
   const Camera camera(spec);
 
   Image image;
   nlohmann::json stats;
   ChannelImage pixel_stats;  // local methods: per-pixel statistics, beside the stats JSON
   if (needs_solution) {
-    const Solution solution = load_solution_for(scene, o.scene, o.solution);
+    const Solution& solution = *inputs.solution;
     if (local) {
-      const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
-      const RayCaster caster(scene);
+      std::vector<EmittingFace> faces;
+      std::optional<RayCaster> caster;
+      std::optional<LocalPass> pass;
+      std::optional<MonteCarloGatherer> monte_carlo;
+      job.step([&] {
+        faces = faces_from_solution(scene, solution);
+        caster.emplace(scene);
+        if (!is_exact(*method)) {
+          monte_carlo.emplace(scene, faces);
+        } else {
+          LocalPassSettings settings = o.settings;
+          settings.mirror_culling = !o.no_mirror_culling;
+          pass.emplace(scene, faces, *method, settings);
+        }
+      });
       ProgressBar bar("render");
       const double total = static_cast<double>(spec.width) * spec.height;
       const auto progress = [&](size_t done) {
         bar.update(done / total, std::to_string(done) + " pixels");
       };
-      IrradianceImage result;
-      std::optional<LocalPass> pass;
-      if (!is_exact(*method)) {
-        result = render_monte_carlo(scene, caster, camera, MonteCarloGatherer(scene, faces),
-                                    o.samples, progress);
-      } else {
-        LocalPassSettings settings = o.settings;
-        settings.mirror_culling = !o.no_mirror_culling;
-        pass.emplace(scene, faces, *method, settings);
-        result = render_local_pass(scene, caster, camera, *pass, o.tolerance, progress);
-      }
+      const IrradianceImage result =
+          pass ? render_local_pass(scene, *caster, camera, *pass, o.tolerance, progress, job)
+               : render_monte_carlo(scene, *caster, camera, *monte_carlo, o.samples, progress, job);
       bar.finish();
+      if (!job.is_root()) return;  // its image holds only the tiles it rendered
       image = result.radiosity;
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -194,16 +212,21 @@ void run_render(const RenderOptions& o) {
       image = render_patches(scene, solution, camera, !o.no_ambient);
     }
   } else if (o.method == "pathtrace") {
-    if (!o.solution.empty())
-      throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
-    const RayCaster caster(scene);
-    const PathTracer tracer(scene);
+    std::optional<RayCaster> caster;
+    std::optional<PathTracer> tracer;
+    job.step([&] {
+      caster.emplace(scene);
+      tracer.emplace(scene);
+    });
     ProgressBar bar("render");
     const double total = static_cast<double>(spec.width) * spec.height;
-    image = render_path_traced(scene, caster, camera, tracer, o.samples, [&](size_t done) {
-              bar.update(done / total, std::to_string(done) + " pixels");
-            }).radiosity;
+    image =
+        render_path_traced(
+            scene, *caster, camera, *tracer, o.samples,
+            [&](size_t done) { bar.update(done / total, std::to_string(done) + " pixels"); }, job)
+            .radiosity;
     bar.finish();
+    if (!job.is_root()) return;
   } else {
     const RayCaster caster(scene);
     image = o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera);

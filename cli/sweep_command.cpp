@@ -8,6 +8,8 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/inputs.h"
+#include "distributed/job.h"
 #include "experiments/sweep.h"
 #include "localpass/method.h"
 #include "radiosity/solution_faces.h"
@@ -32,12 +34,22 @@ void run_sweep_command(SweepOptions o) {
   for (const std::string& name : o.methods)
     o.settings.methods.push_back(*parse_method(name));  // CLI11 checked
   o.settings.reference_method = *parse_method(o.reference_method);
-  ensure_display();  // the charts and heat maps need one: fail now, not after the renders
+  // Over an MPI job every process renders tiles; the root alone draws and writes.
+  const Job& job = Job::world();
+  // The charts and heat maps need a display: fail now, not after the renders.
+  job.step([&] {
+    if (job.is_root()) ensure_display();
+  });
   const ThreadLimit limit(o.threads);
-  const Scene scene = load_scene_reporting(o.scene);
-  const Camera camera(camera_for(scene, o.scene, "sweep", o.width, o.height));
-  const Solution solution = load_solution_for(scene, o.scene, o.solution);
-  const std::vector<EmittingFace> faces = faces_from_solution(scene, solution);
+  const Inputs inputs = load_inputs(job, o.scene, o.solution);
+  const Scene& scene = inputs.scene;
+  CameraSpec spec;
+  std::vector<EmittingFace> faces;
+  job.step([&] {
+    spec = camera_for(scene, o.scene, "sweep", o.width, o.height);
+    faces = faces_from_solution(scene, *inputs.solution);
+  });
+  const Camera camera(spec);
   std::cerr << "sweep: " << camera.width() << "x" << camera.height() << ", " << faces.size()
             << " elements; the reference is "
             << (o.settings.reference_file.empty() ? o.reference_method + " at tolerance 0"
@@ -55,8 +67,10 @@ void run_sweep_command(SweepOptions o) {
     if (row.exact()) std::cerr << ", bound violations " << row.violations;
     std::cerr << "\n";
   };
-  const SweepResult sweep = run_sweep(scene, faces, camera, o.settings, o.output, progress, on_row);
+  const SweepResult sweep =
+      run_sweep(scene, faces, camera, o.settings, o.output, progress, on_row, job);
   bar.finish();
+  if (!job.is_root()) return;
   write_sweep_figures(o.output, sweep);
   const std::vector<SweepRow>& rows = sweep.rows;
   const double seconds =

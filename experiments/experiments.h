@@ -4,7 +4,7 @@
 /// against a path-traced reference at chosen points (global_accuracy.h). The pictures of the
 /// experiment are viz's (viz/sweep_figures.h).
 ///
-/// May use: render, localpass, octree, radiosity, scene, geometry, formats.
+/// May use: render, localpass, octree, radiosity, scene, geometry, formats, distributed.
 #include "experiments/error_map.h"
 #include "experiments/global_accuracy.h"
 #include "experiments/sweep.h"

@@ -66,7 +66,7 @@ void compare_to_reference(const IrradianceImage& image, const IrradianceImage& r
 SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces,
                       const Camera& camera, const SweepSettings& settings,
                       const std::filesystem::path& folder, const SweepProgress& progress,
-                      const SweepRowDone& row_done) {
+                      const SweepRowDone& row_done, const Job& job) {
   if (!is_exact(settings.reference_method))
     throw Error("the sweep's reference method must be exact");
   const RayCaster caster(scene);
@@ -88,7 +88,7 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
     const LocalPass& pass = pass_for(method);
     const auto start = Clock::now();
     out = render_local_pass(scene, caster, camera, pass, tolerance,
-                            reporter(method_name(method) + " T=" + csv_number(tolerance)));
+                            reporter(method_name(method) + " T=" + csv_number(tolerance)), job);
     return std::chrono::duration<double>(Clock::now() - start).count();
   };
 
@@ -96,24 +96,30 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
   double reference_seconds = 0, slack = 1e-8;
   const bool reference_from_file = !settings.reference_file.empty();
   if (reference_from_file) {
-    reference.radiosity = read_exr(settings.reference_file);
-    if (reference.radiosity.width != camera.width() ||
-        reference.radiosity.height != camera.height()) {
-      throw InputError(
-          settings.reference_file.string() + ": " + std::to_string(reference.radiosity.width) +
-          "x" + std::to_string(reference.radiosity.height) + " pixels, but the sweep renders " +
-          std::to_string(camera.width()) + "x" + std::to_string(camera.height()));
-    }
+    job.step([&] {
+      if (!job.is_root()) return;
+      reference.radiosity = read_exr(settings.reference_file);
+      if (reference.radiosity.width != camera.width() ||
+          reference.radiosity.height != camera.height()) {
+        throw InputError(
+            settings.reference_file.string() + ": " + std::to_string(reference.radiosity.width) +
+            "x" + std::to_string(reference.radiosity.height) + " pixels, but the sweep renders " +
+            std::to_string(camera.width()) + "x" + std::to_string(camera.height()));
+      }
+    });
     slack = kFloatSlack;
   } else {
     reference_seconds = time_exact(settings.reference_method, 0, reference);
   }
-  write_exr(folder / "reference.exr", reference.radiosity);
-  write_png_preview(folder / "reference.png", reference.radiosity);
+  if (job.is_root()) {
+    write_exr(folder / "reference.exr", reference.radiosity);
+    write_png_preview(folder / "reference.png", reference.radiosity);
+  }
 
   std::vector<SweepRow> rows;
   std::vector<ErrorMap> maps;
   const auto record = [&](SweepRow row, const IrradianceImage& image, double seconds) {
+    if (!job.is_root()) return;  // its images hold only the tiles it rendered
     row.seconds = seconds;
     if (row.exact()) {
       const IrradianceSummary summary = summarize(image);
@@ -140,7 +146,7 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
         row.samples = n;
         const auto start = Clock::now();
         IrradianceImage image =
-            render_monte_carlo(scene, caster, camera, gatherer, n, reporter(row.label()));
+            render_monte_carlo(scene, caster, camera, gatherer, n, reporter(row.label()), job);
         record(std::move(row), image, std::chrono::duration<double>(Clock::now() - start).count());
       }
       continue;
@@ -159,6 +165,7 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
     }
   }
 
+  if (!job.is_root()) return {};
   // Error maps on one colour scale: the largest error of the exact rows (Monte Carlo's few
   // samples can be off by 10x and more, which would leave the exact maps one flat colour);
   // Monte Carlo maps clamp there. With no exact row, the largest error of all.

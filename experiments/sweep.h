@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "distributed/job.h"
 #include "experiments/error_map.h"
 #include "geometry/emitting_face.h"
 #include "localpass/method.h"
@@ -73,11 +74,13 @@ struct SweepResult {
 
 /// Runs the sweep and writes into `folder`: results.csv; reference.exr/.png; images/<slug>.exr
 /// and .png; error_maps/<slug>.exr. The pictures (heat maps and charts) are viz's
-/// (viz/sweep_figures.h). Throws Error.
+/// (viz/sweep_figures.h). Throws Error. Over an MPI job (`job`, distributed/job.h) every process
+/// calls it: each render's tiles are spread over them, and the root alone compares, writes and
+/// returns the rows (the others return none).
 SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces,
                       const Camera& camera, const SweepSettings& settings,
                       const std::filesystem::path& folder, const SweepProgress& progress = {},
-                      const SweepRowDone& row_done = {});
+                      const SweepRowDone& row_done = {}, const Job& job = Job::world());
 
 /// results.csv: a header and one line per row (columns documented in docs/formats.md).
 void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepRow>& rows);

@@ -5,7 +5,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
+#include <string>
+#include <string_view>
 
+#include "scene/error.h"
 #include "scene/point_lights.h"
 
 namespace rad {
@@ -17,9 +21,51 @@ namespace {
 /// off mirrors (000 §3, to the scene's mirror depth; RayCaster::follow): each surface it meets
 /// is weighted by what the filters and mirrors before it pass on, and an opaque one ends it.
 /// Without filters and mirrors that is the first hit alone, as before.
+/// Appends and reads back the plain values of a tile's pixels (same binary on every process).
+class TileBytes {
+ public:
+  template <typename T>
+  void put(const T& value) {
+    out_.append(reinterpret_cast<const char*>(&value), sizeof value);
+  }
+  explicit TileBytes(std::string_view in = {}) : in_(in) {}
+  template <typename T>
+  void get(T& value) {
+    if (in_.size() - at_ < sizeof value) throw Error("render: a tile's bytes are cut short");
+    std::memcpy(&value, in_.data() + at_, sizeof value);
+    at_ += sizeof value;
+  }
+  std::string take() { return std::move(out_); }
+
+ private:
+  std::string out_;
+  std::string_view in_;
+  size_t at_ = 0;
+};
+
+/// Tiles of an MPI job's render: 64 pixels square, halved down to 16 until there are 8 tiles a
+/// process, so that the dynamic schedule has slack to even out uneven tiles.
+int tile_side(int width, int height, int processes) {
+  int side = 64;
+  const auto tiles = [&](int s) {
+    return static_cast<long>((width + s - 1) / s) * ((height + s - 1) / s);
+  };
+  while (side > 16 && tiles(side) < 8L * processes) side /= 2;
+  return side;
+}
+
+/// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
+/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and reflects
+/// off mirrors (000 §3, to the scene's mirror depth; RayCaster::follow): each surface it meets
+/// is weighted by what the filters and mirrors before it pass on, and an opaque one ends it.
+/// Without filters and mirrors that is the first hit alone, as before. Over an MPI job the
+/// image is cut into tiles, handed out by `job` and gathered on its root (the other processes'
+/// images hold only the tiles they computed); every pixel is computed on its own, so which
+/// process or thread computed it does not change a bit of it.
 template <typename Shade>
 IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, double gap,
-                              const std::function<void(size_t)>& progress, const Shade& shade) {
+                              const std::function<void(size_t)>& progress, const Job& job,
+                              const Shade& shade) {
   const Scene& scene = caster.scene();
   const int width = camera.width(), height = camera.height();
   IrradianceImage out;
@@ -33,22 +79,75 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
   out.clusters.assign(count, 0);
   out.surface.assign(count, 0);
   std::atomic<size_t> done{0};
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
-                    [&](const tbb::blocked_range2d<int>& tile) {
-                      for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
-                        for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
-                          const size_t index = static_cast<size_t>(y) * width + x;
-                          caster.follow(camera.ray(x + 0.5, y + 0.5), RayCaster::limits_of(scene),
-                                        gap, [&](const Hit& hit, const Rgb& weight, int) {
-                                          if (!hit.front_facing) return;
-                                          shade(hit, weight, index, out);
-                                          out.surface[index] = 1;
-                                        });
-                        }
-                      }
-                      const size_t finished = done += tile.rows().size() * tile.cols().size();
-                      if (progress) progress(finished);
-                    });
+  const auto render_range = [&](const tbb::blocked_range2d<int>& tile) {
+    for (int y = tile.rows().begin(); y != tile.rows().end(); ++y) {
+      for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+        const size_t index = static_cast<size_t>(y) * width + x;
+        caster.follow(camera.ray(x + 0.5, y + 0.5), RayCaster::limits_of(scene), gap,
+                      [&](const Hit& hit, const Rgb& weight, int) {
+                        if (!hit.front_facing) return;
+                        shade(hit, weight, index, out);
+                        out.surface[index] = 1;
+                      });
+      }
+    }
+  };
+  if (!job.distributed()) {
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, height, 16, 0, width, 16),
+                      [&](const tbb::blocked_range2d<int>& tile) {
+                        render_range(tile);
+                        const size_t finished = done += tile.rows().size() * tile.cols().size();
+                        if (progress) progress(finished);
+                      });
+    return out;
+  }
+
+  const int side = tile_side(width, height, job.size());
+  const int columns = (width + side - 1) / side;
+  const size_t tiles = static_cast<size_t>(columns) * ((height + side - 1) / side);
+  const auto range_of = [&](size_t tile) {
+    const int x0 = static_cast<int>(tile % columns) * side;
+    const int y0 = static_cast<int>(tile / columns) * side;
+    return tbb::blocked_range2d<int>(y0, std::min(y0 + side, height), 8, x0,
+                                     std::min(x0 + side, width), 8);
+  };
+  const auto for_each_pixel = [&](size_t tile, const auto& f) {
+    const tbb::blocked_range2d<int> r = range_of(tile);
+    for (int y = r.rows().begin(); y != r.rows().end(); ++y)
+      for (int x = r.cols().begin(); x != r.cols().end(); ++x)
+        f(static_cast<size_t>(y) * width + x);
+  };
+  BlockWork work;
+  work.blocks = tiles;
+  work.compute = [&](size_t tile) { tbb::parallel_for(range_of(tile), render_range); };
+  work.pack = [&](size_t tile) {
+    TileBytes bytes;
+    for_each_pixel(tile, [&](size_t i) {
+      for (const Image* image : {&out.radiosity, &out.refracted, &out.glossy, &out.bound})
+        for (int c = 0; c < 3; ++c) bytes.put(image->pixels[i][c]);
+      bytes.put(out.gathered_exactly[i]);
+      bytes.put(out.projected[i]);
+      bytes.put(out.clusters[i]);
+      bytes.put(out.surface[i]);
+    });
+    return bytes.take();
+  };
+  work.unpack = [&](size_t tile, std::string_view data) {
+    TileBytes bytes(data);
+    for_each_pixel(tile, [&](size_t i) {
+      for (Image* image : {&out.radiosity, &out.refracted, &out.glossy, &out.bound})
+        for (int c = 0; c < 3; ++c) bytes.get(image->pixels[i][c]);
+      bytes.get(out.gathered_exactly[i]);
+      bytes.get(out.projected[i]);
+      bytes.get(out.clusters[i]);
+      bytes.get(out.surface[i]);
+    });
+  };
+  const size_t tile_pixels = static_cast<size_t>(side) * side;
+  work.progress = [&](size_t blocks) {
+    if (progress) progress(std::min(count, blocks * tile_pixels));
+  };
+  job.run_blocks(work);
   return out;
 }
 
@@ -56,13 +155,13 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
 
 IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
                                   const LocalPass& pass, double tolerance,
-                                  const std::function<void(size_t)>& progress) {
+                                  const std::function<void(size_t)>& progress, const Job& job) {
   // Through filters and mirrors the pixel is sum_k w_k B_k with w_k >= 0 known exactly, so the
   // weighted sum of the points' certified bounds bounds its error. (The tolerance applies to
   // each point's H, as without them: a pixel's bound relative to its B can exceed it where rho
   // or the weights differ between channels.)
   return render_pixels(
-      caster, camera, scene.tolerance().ray_offset, progress,
+      caster, camera, scene.tolerance().ray_offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
@@ -88,9 +187,10 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
 
 IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const MonteCarloGatherer& gatherer,
-                                   int samples, const std::function<void(size_t)>& progress) {
+                                   int samples, const std::function<void(size_t)>& progress,
+                                   const Job& job) {
   IrradianceImage image = render_pixels(
-      caster, camera, scene.tolerance().ray_offset, progress,
+      caster, camera, scene.tolerance().ray_offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const Rgb h = gatherer.gather(hit.point, hit.normal, samples, index);
@@ -107,9 +207,9 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
 
 IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const PathTracer& tracer, int paths,
-                                   const std::function<void(size_t)>& progress) {
+                                   const std::function<void(size_t)>& progress, const Job& job) {
   IrradianceImage image = render_pixels(
-      caster, camera, scene.tolerance().ray_offset, progress,
+      caster, camera, scene.tolerance().ray_offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         out.radiosity.pixels[index] += weight.cwiseProduct(

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "distributed/job.h"
 #include "formats/image.h"
 #include "localpass/local_pass.h"
 #include "localpass/monte_carlo.h"
@@ -63,20 +64,25 @@ IrradianceSummary summarize(const IrradianceImage& image);
 /// index (bitwise the same for any thread count).
 IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const PathTracer& tracer, int paths,
-                                   const std::function<void(size_t)>& progress = {});
+                                   const std::function<void(size_t)>& progress = {},
+                                   const Job& job = Job::world());
 
 /// Renders through `camera` with the local pass at `tolerance`; parallel over 16x16 pixel tiles
 /// (TBB). Every pixel is computed on its own, so the image is bitwise the same for any thread
 /// count. `progress` (may be empty) is called with the number of pixels done, from worker
-/// threads, now and then.
+/// threads, now and then. Over an MPI job (`job` of more than one process) the tiles are spread
+/// over its processes and the whole image is on the root alone; it is bitwise the same image
+/// (and on the other processes these functions return partial images).
 IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
                                   const LocalPass& pass, double tolerance,
-                                  const std::function<void(size_t)>& progress = {});
+                                  const std::function<void(size_t)>& progress = {},
+                                  const Job& job = Job::world());
 
 /// The Monte Carlo baseline: H from `samples` cosine-weighted rays per pixel, seeded by the
 /// pixel index (bitwise the same for any thread count).
 IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const MonteCarloGatherer& gatherer,
-                                   int samples, const std::function<void(size_t)>& progress = {});
+                                   int samples, const std::function<void(size_t)>& progress = {},
+                                   const Job& job = Job::world());
 
 }  // namespace rad

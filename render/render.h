@@ -4,7 +4,8 @@
 /// (patch_render.h), and B = E + rho H through the local pass or the Monte Carlo baseline
 /// (irradiance_render.h).
 ///
-/// May use: localpass, octree, radiosity, scene, geometry, formats (the image type), TBB.
+/// May use: localpass, octree, radiosity, scene, geometry, formats (the image type), distributed
+/// (tiles over the processes of an MPI job), TBB.
 #include "render/albedo_render.h"
 #include "render/irradiance_render.h"
 #include "render/patch_render.h"

@@ -18,20 +18,8 @@ std::string lower_extension(const std::filesystem::path& file) {
   return ext;
 }
 
-}  // namespace
-
-bool is_supported_mesh_extension(const std::filesystem::path& file) {
-  const std::string ext = lower_extension(file);
-  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
-}
-
-std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file,
-                                               const std::string& where,
-                                               std::vector<std::string>& warnings) {
-  if (!is_supported_mesh_extension(file)) {
-    throw InputError(where + ": unsupported mesh format '" + file.extension().string() + "' of '" +
-                     file.string() + "' (supported: .obj .ply .off .stl)");
-  }
+/// The whole of a mesh file, within limits::kMeshFileBytes.
+std::string read_mesh_bytes(const std::filesystem::path& file, const std::string& where) {
   std::error_code error;
   std::ifstream in(file, std::ios::binary);
   if (!in.good() || !std::filesystem::is_regular_file(file, error)) {
@@ -47,6 +35,27 @@ std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file
   if (static_cast<std::uintmax_t>(in.gcount()) != size) {
     throw InputError(where + ": cannot read mesh file '" + file.string() + "'");
   }
+  return bytes;
+}
+
+}  // namespace
+
+bool is_supported_mesh_extension(const std::filesystem::path& file) {
+  const std::string ext = lower_extension(file);
+  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+}
+
+std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file,
+                                               const std::string& where,
+                                               std::vector<std::string>& warnings,
+                                               InputFiles* files) {
+  if (!is_supported_mesh_extension(file)) {
+    throw InputError(where + ": unsupported mesh format '" + file.extension().string() + "' of '" +
+                     file.string() + "' (supported: .obj .ply .off .stl)");
+  }
+  const std::string* recorded = files ? files->find(file) : nullptr;
+  const std::string bytes = recorded ? *recorded : read_mesh_bytes(file, where);
+  if (files && !recorded) files->add(file, bytes);
 
   const mesh_formats::MeshSource source{bytes, file.string(), where};
   std::vector<std::vector<Vec3>> faces;

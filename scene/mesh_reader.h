@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/vec.h"
+#include "scene/input_files.h"
 
 namespace rad {
 
@@ -16,9 +17,12 @@ namespace rad {
 /// other than vertex and face) is appended to `warnings`. Faces are not validated here: a face
 /// with too few vertices or non-finite coordinates comes back as it is, for polygon validation to
 /// name. Non-manifold faces are kept. Cost: one pass over the file, which is held in memory.
+/// With `files`, the bytes recorded there for `file` are read instead of the disk, and bytes
+/// read from disk are recorded (scene/input_files.h).
 std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file,
                                                const std::string& where,
-                                               std::vector<std::string>& warnings);
+                                               std::vector<std::string>& warnings,
+                                               InputFiles* files = nullptr);
 
 /// True for the extensions read_mesh_faces accepts (case-insensitive): .obj .ply .off .stl
 bool is_supported_mesh_extension(const std::filesystem::path& file);

@@ -379,7 +379,8 @@ size_t too_deep_at(const std::string& text, int limit) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& json_text, const std::filesystem::path& file) {
+Scene parse_scene(const std::string& json_text, const std::filesystem::path& file,
+                  InputFiles* files) {
   const Reader in(file.string());
   if (const size_t at = too_deep_at(json_text, limits::kJsonDepth); at != std::string::npos) {
     throw InputError(file.string() + ":" + line_column(json_text, at) +
@@ -464,7 +465,7 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
     if (o.contains("mesh")) {
       object.mesh = in.string(o["mesh"], where + ".mesh");
       where += " (" + object.mesh + ")";
-      faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings);
+      faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings, files);
       element = " face ";
     } else {
       const Json& polygons = o["polygons"];
@@ -528,7 +529,9 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& file) {
+Scene load_scene(const std::filesystem::path& file, InputFiles* files) {
+  if (const std::string* recorded = files ? files->find(file) : nullptr)
+    return parse_scene(*recorded, file, files);
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw InputError(file.string() + ": cannot open scene file");
   std::error_code error;
@@ -541,7 +544,8 @@ Scene load_scene(const std::filesystem::path& file) {
   std::ostringstream text;
   text << stream.rdbuf();
   if (stream.bad()) throw InputError(file.string() + ": cannot read scene file");
-  return parse_scene(text.str(), file);
+  if (files) files->add(file, text.str());
+  return parse_scene(text.str(), file, files);
 }
 
 }  // namespace rad

@@ -11,6 +11,7 @@ packages=(
   xvfb xauth
   clang-format python3
   clang libclang-rt-14-dev
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

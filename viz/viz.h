@@ -4,7 +4,8 @@
 /// sweep's figures (sweep_figures.h), and the private X display VTK's rendering needs
 /// (offscreen_display.h).
 ///
-/// May use: experiments, render, localpass, octree, formats, radiosity, scene, geometry, VTK.
+/// May use: experiments, render, localpass, octree, formats, radiosity, scene, geometry,
+/// distributed, VTK.
 #include "viz/charts.h"
 #include "viz/error_heat_map.h"
 #include "viz/offscreen_display.h"

@@ -14,15 +14,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kModules{"geometry",  "scene",       "hemisphere", "vertex",
-                                        "radiosity", "octree",      "localpass",  "formats",
-                                        "render",    "experiments", "viz",        "cli"};
+const std::vector<std::string> kModules{
+    "geometry",  "scene",   "distributed", "hemisphere",  "vertex", "radiosity", "octree",
+    "localpass", "formats", "render",      "experiments", "viz",    "cli"};
 
 /// Modules each module may include (itself included): the graph of docs/architecture.md.
 /// tests/ and bench/ may use everything.
 const std::map<std::string, std::set<std::string>> kAllowedModules{
     {"geometry", {"geometry"}},
     {"scene", {"scene", "geometry"}},
+    {"distributed", {"distributed", "scene", "geometry"}},
     {"hemisphere", {"hemisphere", "geometry"}},
     {"vertex", {"vertex", "scene", "geometry"}},
     {"radiosity", {"radiosity", "scene", "geometry"}},
@@ -30,21 +31,23 @@ const std::map<std::string, std::set<std::string>> kAllowedModules{
     {"localpass",
      {"localpass", "octree", "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
     {"formats", {"formats", "radiosity", "scene", "geometry"}},
-    {"render", {"render", "localpass", "octree", "radiosity", "scene", "geometry", "formats"}},
+    {"render",
+     {"render", "localpass", "octree", "radiosity", "scene", "geometry", "formats", "distributed"}},
     {"experiments",
-     {"experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry", "formats"}},
+     {"experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry", "formats",
+      "distributed"}},
     {"viz",
      {"viz", "experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry",
-      "formats"}},
+      "formats", "distributed"}},
     {"cli",
-     {"cli", "viz", "experiments", "render", "formats", "localpass", "octree", "hemisphere",
-      "vertex", "radiosity", "scene", "geometry"}},
+     {"cli", "viz", "experiments", "render", "formats", "distributed", "localpass", "octree",
+      "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
 };
 
 /// Third-party headers, by include prefix, and the modules that may include them. Eigen and the
 /// standard library are open to all. Embree may appear only in scene's .cpp files (never in a
 /// header), VTK only in formats (its file I/O), viz and cli, OpenEXR only in formats, Boost
-/// (small_vector) only in hemisphere.
+/// (small_vector) only in hemisphere, MPI only in distributed's .cpp files.
 struct ThirdParty {
   std::regex include;
   std::set<std::string> modules;
@@ -63,6 +66,7 @@ const std::vector<std::pair<std::string, ThirdParty>>& third_party() {
       {"nlohmann-json", {std::regex(R"(^nlohmann/)"), {"scene", "formats", "cli"}, false}},
       {"CLI11", {std::regex(R"(^CLI/)"), {"cli"}, false}},
       {"Boost", {std::regex(R"(^boost/)"), {"hemisphere"}, false}},
+      {"MPI", {std::regex(R"(^mpi\.h$)"), {"distributed"}, true}},
   };
   return rules;
 }
