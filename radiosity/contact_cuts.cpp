@@ -121,9 +121,59 @@ Piece without_straight_corners(const Piece& piece, double pad) {
 
 }  // namespace
 
-std::vector<std::vector<Vec3>> contact_pieces(const Scene& scene, int index, int max_cuts) {
+NearPolygons::NearPolygons(const Scene& scene) : scene_(scene), pad_(scene.tolerance().pad) {
+  const Bounds bounds = scene.bounds();
+  // About two cells a polygon, at most 256 along an axis, cubes where the scene allows.
+  const Vec3 extent = (bounds.hi - bounds.lo).cwiseMax(Vec3::Constant(1e-9));
+  const double target = std::max<double>(1, 2.0 * static_cast<double>(scene.polygons.size()));
+  const double side = std::cbrt(extent.prod() / target);
+  for (int a = 0; a < 3; ++a)
+    cells_[a] = std::clamp(static_cast<int>(extent[a] / std::max(side, 1e-12)), 1, 256);
+  origin_ = bounds.lo;
+  size_ = extent.cwiseQuotient(Vec3(cells_[0], cells_[1], cells_[2]));
+  members_.resize(static_cast<size_t>(cells_[0]) * cells_[1] * cells_[2]);
+  for (int i = 0; i < static_cast<int>(scene.polygons.size()); ++i) {
+    int low[3], high[3];
+    cell_range(i, low, high);
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = low[1]; y <= high[1]; ++y)
+        for (int x = low[0]; x <= high[0]; ++x) members_[cell(x, y, z)].push_back(i);
+  }
+}
+
+void NearPolygons::cell_range(int index, int low[3], int high[3]) const {
+  const Polygon& p = scene_.polygons[index];
+  Vec3 lo = p.vertices[0], hi = p.vertices[0];
+  for (const Vec3& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  for (int a = 0; a < 3; ++a) {
+    const auto at = [&](double coordinate) {
+      return std::clamp(static_cast<int>(std::floor((coordinate - origin_[a]) / size_[a])), 0,
+                        cells_[a] - 1);
+    };
+    low[a] = at(lo[a] - pad_);
+    high[a] = at(hi[a] + pad_);
+  }
+}
+
+std::vector<int> NearPolygons::of(int index) const {
+  int low[3], high[3];
+  cell_range(index, low, high);
+  std::vector<int> out;
+  for (int z = low[2]; z <= high[2]; ++z)
+    for (int y = low[1]; y <= high[1]; ++y)
+      for (int x = low[0]; x <= high[0]; ++x) {
+        const std::vector<int>& m = members_[cell(x, y, z)];
+        out.insert(out.end(), m.begin(), m.end());
+      }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<std::vector<Vec3>> contact_pieces(const Scene& scene, int index, int max_cuts,
+                                              const NearPolygons* near) {
   const Polygon& p = scene.polygons[index];
-  const double pad = scene.tolerance().pad;
+  const double pad = near ? near->pad() : scene.tolerance().pad;
   const PlaneFrame frame(p.vertices[0], p.normal);
   const auto to_3d = [&](const Vec2& x) -> Vec3 {
     return frame.origin + x.x() * frame.u + x.y() * frame.v;
@@ -142,8 +192,16 @@ std::vector<std::vector<Vec3>> contact_pieces(const Scene& scene, int index, int
   Vec3 low = p.vertices[0], high = p.vertices[0];
   for (const Vec3& v : p.vertices) low = low.cwiseMin(v), high = high.cwiseMax(v);
   std::vector<std::pair<double, Segment>> segments;
-  for (size_t i = 0; i < scene.polygons.size(); ++i) {
-    if (static_cast<int>(i) == index) continue;
+  // In scene order either way: the stable sort below keeps ties so.
+  std::vector<int> candidates;
+  if (near) {
+    candidates = near->of(index);
+  } else {
+    candidates.resize(scene.polygons.size());
+    for (size_t i = 0; i < candidates.size(); ++i) candidates[i] = static_cast<int>(i);
+  }
+  for (const int i : candidates) {
+    if (i == index) continue;
     const Polygon& q = scene.polygons[i];
     Vec3 qlow = q.vertices[0], qhigh = q.vertices[0];
     for (const Vec3& v : q.vertices) qlow = qlow.cwiseMin(v), qhigh = qhigh.cwiseMax(v);

@@ -92,10 +92,11 @@ void element_geometry(const std::vector<Vec3>& corners, double* area, Vec3* cent
 
 std::vector<Patch> make_patches(const Scene& scene, double patch_size) {
   std::vector<Patch> patches;
+  const NearPolygons near(scene);
   for (size_t i = 0; i < scene.polygons.size(); ++i) {
     const Polygon& p = scene.polygons[i];
     const int id = static_cast<int>(i);
-    const std::vector<std::vector<Vec3>> pieces = contact_pieces(scene, id);
+    const std::vector<std::vector<Vec3>> pieces = contact_pieces(scene, id, 64, &near);
     if (!pieces.empty()) {
       // Cut along contact lines: each convex piece meshed alone (a quad as a grid, any other
       // piece as a fan of triangles), so no patch straddles a line.

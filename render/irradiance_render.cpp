@@ -160,8 +160,9 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
   // weighted sum of the points' certified bounds bounds its error. (The tolerance applies to
   // each point's H, as without them: a pixel's bound relative to its B can exceed it where rho
   // or the weights differ between channels.)
+  const double offset = scene.tolerance().ray_offset;  // O(polygons): once, not per pixel
   return render_pixels(
-      caster, camera, scene.tolerance().ray_offset, progress, job,
+      caster, camera, offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
@@ -171,10 +172,9 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
         out.refracted.pixels[index] +=
             weight.cwiseProduct(material.reflectance.cwiseProduct(r.refracted));
         // A point light's highlight on a glossy surface (003's lobe), apart as glossy light.
-        const Rgb highlight =
-            glossy_highlight(scene, caster, material, hit.point, hit.normal,
-                             shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction,
-                             scene.tolerance().ray_offset);
+        const Rgb highlight = glossy_highlight(
+            scene, caster, material, hit.point, hit.normal,
+            shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction, offset);
         out.radiosity.pixels[index] += weight.cwiseProduct(highlight);
         out.glossy.pixels[index] +=
             weight.cwiseProduct(material.reflectance.cwiseProduct(r.glossy) + highlight);
@@ -189,15 +189,15 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const MonteCarloGatherer& gatherer,
                                    int samples, const std::function<void(size_t)>& progress,
                                    const Job& job) {
+  const double offset = scene.tolerance().ray_offset;  // O(polygons): once, not per pixel
   IrradianceImage image = render_pixels(
-      caster, camera, scene.tolerance().ray_offset, progress, job,
+      caster, camera, offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
         const Rgb h = gatherer.gather(hit.point, hit.normal, samples, index);
-        const Rgb highlight =
-            glossy_highlight(scene, caster, material, hit.point, hit.normal,
-                             shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction,
-                             scene.tolerance().ray_offset);
+        const Rgb highlight = glossy_highlight(
+            scene, caster, material, hit.point, hit.normal,
+            shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction, offset);
         out.radiosity.pixels[index] += weight.cwiseProduct(
             material.emission + material.reflectance.cwiseProduct(h) + highlight);
       });
@@ -208,14 +208,14 @@ IrradianceImage render_monte_carlo(const Scene& scene, const RayCaster& caster,
 IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const PathTracer& tracer, int paths,
                                    const std::function<void(size_t)>& progress, const Job& job) {
+  const double offset = scene.tolerance().ray_offset;  // O(polygons): once, not per pixel
   IrradianceImage image = render_pixels(
-      caster, camera, scene.tolerance().ray_offset, progress, job,
+      caster, camera, offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
-        out.radiosity.pixels[index] += weight.cwiseProduct(
-            glossy_highlight(scene, caster, material, hit.point, hit.normal,
-                             shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction,
-                             scene.tolerance().ray_offset));
+        out.radiosity.pixels[index] += weight.cwiseProduct(glossy_highlight(
+            scene, caster, material, hit.point, hit.normal,
+            shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction, offset));
         if (material.reflectance == Rgb::Zero()) {
           out.radiosity.pixels[index] += weight.cwiseProduct(material.emission);
           return;
