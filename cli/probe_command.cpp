@@ -106,6 +106,8 @@ void run_probe(const ProbeOptions& o) {
     throw InputError("--target-error is for --method pathtrace");
   if (o.method == "pathtrace" && !o.solution.empty())
     throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
+  if (o.method == "montecarlo" && o.solution.empty())
+    throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
   // Over an MPI job: the inputs and the points read on the root and sent to all, runs of points
@@ -148,12 +150,6 @@ void run_probe(const ProbeOptions& o) {
         standard_error[i] = e.standard_error;
         bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
       };
-    }
-    if (path_tracer) {
-      // set up above
-    } else if (!is_exact(method) && o.solution.empty()) {
-      throw InputError(
-          "--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
     } else if (inputs.solution) {
       const Solution& solution = *inputs.solution;
       if (!is_exact(method)) {
@@ -302,7 +298,8 @@ void add_probe_command(CLI::App& app, Run& run) {
       "shortest\n"
       "form that reads back exactly. A point on a polygon, an edge or a vertex is valid. Parallel "
       "over\n"
-      "points; the output is byte-identical for any thread count. With refracting materials "
+      "points (under mpirun, runs of points over the processes: docs/cluster.md); the output is\n"
+      "byte-identical for any thread and process count. With refracting materials "
       "(\"ior\"),\n"
       "three more columns refracted_r,refracted_g,refracted_b: the light refracted through them by "
       "the\n"

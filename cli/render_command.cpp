@@ -293,7 +293,8 @@ void add_render_command(CLI::App& app, Run& run) {
       "for\n"
       "a different scene. Parallel over 16x16 pixel tiles; the image does not depend on the "
       "thread\n"
-      "count. File contents: docs/formats.md.");
+      "count. Under mpirun the tiles are spread over the processes, with the same bytes out\n"
+      "(docs/cluster.md). File contents: docs/formats.md.");
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
   sub->add_option(
          "-m,--method", o->method,

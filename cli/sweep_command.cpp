@@ -106,7 +106,8 @@ void add_sweep_command(CLI::App& app, Run& run) {
       "the reference render itself. With --reference the reference holds floats, so the bound "
       "check\n"
       "allows 2^-23 of the value instead of 1e-8. Prints a line per setting; timings are of the\n"
-      "renders alone. Pictures need an X display: without $DISPLAY a private Xvfb is started.");
+      "renders alone. Pictures need an X display: without $DISPLAY a private Xvfb is started.\n"
+      "Under mpirun each render's tiles are spread over the processes (docs/cluster.md).");
   sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
   add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
