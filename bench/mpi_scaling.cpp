@@ -47,7 +47,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 int costs(int argc, char** argv) {
   if (argc < 8) return 2;
@@ -97,7 +99,8 @@ double time_blocks(const rad::Job& job, size_t blocks, const std::function<doubl
   unpacked = 0;
   const auto start = Clock::now();
   job.run_blocks(w);
-  if (gap && unpacked > 1) *gap = std::chrono::duration<double>(last - first).count() / (unpacked - 1);
+  if (gap && unpacked > 1)
+    *gap = std::chrono::duration<double>(last - first).count() / (unpacked - 1);
   return since(start);
 }
 
@@ -111,13 +114,15 @@ int overhead(int argc, char** argv) {
   // (1) Every process sleeps 2 ms a block: the time beyond B x 2 ms / P is the messages'.
   const size_t blocks = 200;
   const double sleep = 0.002;
-  const double t1 = time_blocks(job, blocks, [&](int) { return sleep; }, tile_bytes);
+  const double t1 = time_blocks(
+      job, blocks, [&](int) { return sleep; }, tile_bytes);
   const double per_block_overhead = std::max(0.0, t1 * p / blocks - sleep);
   // (2) The root's worker sleeps long (it takes one block); the others' blocks are empty: the
   // root serves one message after another, and the time per block is its service time.
   double service = 0;
   if (p > 1)
-    time_blocks(job, 2000, [](int rank) { return rank == 0 ? 0.2 : 0.0; }, tile_bytes, &service);
+    time_blocks(
+        job, 2000, [](int rank) { return rank == 0 ? 0.2 : 0.0; }, tile_bytes, &service);
   // (3) The inputs' broadcast.
   std::string payload(job.is_root() ? bytes : 0, 'x');
   MPI_Barrier(MPI_COMM_WORLD);
@@ -164,8 +169,7 @@ int tile_side(int width, int height, int processes) {
 /// The schedule's makespan: tiles in order to whichever process is free first; process 0's
 /// worker thread pays nothing beyond the work, the others `per_block` a tile and one `service`
 /// of the root's single server each (queued when it is busy).
-double makespan(const std::vector<double>& tiles, int processes, double per_block,
-                double service) {
+double makespan(const std::vector<double>& tiles, int processes, double per_block, double service) {
   using Event = std::pair<double, int>;  // (free at, process)
   std::priority_queue<Event, std::vector<Event>, std::greater<>> free;
   for (int p = 0; p < processes; ++p) free.push({0.0, p});
@@ -224,7 +228,8 @@ int model(int argc, char** argv) {
       big[y * big_w + x] = pixel[(y / kScale) * width + x / kScale] / (kScale * kScale);
 
   std::vector<Overhead> overheads;
-  for (const auto& r : overhead_rows) overheads.push_back({static_cast<int>(r[0]), r[1], r[2], r[3]});
+  for (const auto& r : overhead_rows)
+    overheads.push_back({static_cast<int>(r[0]), r[1], r[2], r[3]});
   // Measured at 2 to 4 processes: the largest per-block time (the oversubscribed runs are the
   // slowest); the root's service time bounded by the shortest gap between results it served
   // (with one worker the gap is that worker's round trip; with more, the root is the limit);
@@ -242,7 +247,9 @@ int model(int argc, char** argv) {
   if (service == 1e9) service = 0;
   const double slope = n > 1 ? (n * sxy - sx * sy) / std::max(1e-30, n * sxx - sx * sx) : 0;
   const double intercept = n > 0 ? (sy - slope * sx) / n : 0;
-  const auto broadcast = [&](int p) { return p < 2 ? 0.0 : std::max(0.0, intercept + slope * std::log2(p)); };
+  const auto broadcast = [&](int p) {
+    return p < 2 ? 0.0 : std::max(0.0, intercept + slope * std::log2(p));
+  };
   // `share`: how much longer a tile takes than alone on a core (processes sharing cores).
   const auto predict = [&](const std::vector<double>& px, int w, int h, int p, double share) {
     const int side = tile_side(w, h, p);
@@ -261,8 +268,8 @@ int model(int argc, char** argv) {
                 "all on one thread (the gathers' %.1f s times %.3f, the render's own share), "
                 "setup %.2f s; a worker's tile costs %.2f ms beyond its work, the root %.0f us "
                 "a tile served; broadcasting the inputs takes %.2f + %.2f log2(P) ms.\n\n",
-                width, height, work, gathering, calibration, setup, per_block * 1e3,
-                service * 1e6, intercept * 1e3, slope * 1e3);
+                width, height, work, gathering, calibration, setup, per_block * 1e3, service * 1e6,
+                intercept * 1e3, slope * 1e3);
   md << text;
   md << "The model against the render measured here (median of 3 runs; " << cores
      << " cores: more processes share them):\n\n";
@@ -277,7 +284,8 @@ int model(int argc, char** argv) {
         "scene "
      << kScale << " x " << kScale << " times larger:\n\n";
   md << "| processes | speed-up, " << width << "x" << height << " | efficiency | speed-up, "
-     << big_w << "x" << big_h << " | efficiency | tiles a process (large) |\n|---|---|---|---|---|---|\n";
+     << big_w << "x" << big_h
+     << " | efficiency | tiles a process (large) |\n|---|---|---|---|---|---|\n";
   rad::LineChart chart;
   chart.title = "MPI render: modelled speed-up (measured costs)";
   chart.x_label = "processes";

@@ -48,6 +48,7 @@ for p in 1 2 3 4; do
   t=$(for _ in 1 2 3; do render $p $WIDTH $HEIGHT; done | median)
   echo "$p,$t,$setup" >>"$OUT/measured.csv"
 done
+echo "$(git rev-parse --short HEAD)$([ -z "$(git status --porcelain -- distributed render cli)" ] || echo ' plus uncommitted changes'), $(date -u +%Y-%m-%d)" >"$OUT/measured_at.txt"
 fi
 INPUT_BYTES=$(($(stat -c %s "$OUT/scene.json") + $(stat -c %s "$OUT/solution.vtp")))
 
@@ -58,9 +59,8 @@ INPUT_BYTES=$(($(stat -c %s "$OUT/scene.json") + $(stat -c %s "$OUT/solution.vtp
   echo
   echo "Written by \`bash bench/mpi_scaling.sh\` (bench/mpi_scaling.cpp):"
   provenance bench/mpi_scaling.cpp bench/mpi_scaling.sh distributed render data/building
-  echo "- scene: data/building/make_building.py --storeys 1 --rooms-x 2 --rooms-z 2 (2,665"
-  echo "  polygons), solved with --element-levels 0 --refine-threshold 0 --unshot 0.02; the local"
-  echo "  pass (hemisphere) at tolerance $TOLERANCE, $WIDTH x $HEIGHT pixels, one thread a process"
+  echo "- measured at: $(cat "$OUT/measured_at.txt" 2>/dev/null || echo unknown) (the runs; the model is re-run by MODEL_ONLY=1)"
+  echo "- scene: \`make_building.py --storeys 1 --rooms-x 2 --rooms-z 2\` ($(sed -n 's/^polygons *\([0-9]*\).*/\1/p' <("$RADIOSITY" info "$OUT/scene.json")) polygons), solved with \`--element-levels 0 --refine-threshold 0 --unshot 0.02\`; the local pass (hemisphere) at tolerance $TOLERANCE, $WIDTH x $HEIGHT pixels, one thread a process"
   echo "- the messages (one line per process count: processes, a worker's seconds a block beyond"
   echo "  its work, the root's seconds between two results it served, seconds to broadcast the"
   echo "  inputs' $INPUT_BYTES bytes):"

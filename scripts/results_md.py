@@ -179,6 +179,14 @@ def main():
         "without. What limits it: [algorithms.md](algorithms.md#glossy-transfer-by-backward-beams-paper-003-a-heuristic-kept-apart).",
     ], [], [("error against sigma", "images/glossy-sigma.png"),
             ("time against triangles", "images/glossy-cost.png")])
+    bench_tables(out, "bench/results/mpi_scaling.md",
+                 "## Beyond one machine: the MPI render, measured and modelled", [
+        "From [`bench/results/mpi_scaling.md`](../bench/results/mpi_scaling.md)",
+        "(`bash bench/mpi_scaling.sh`): the local pass over a storey of the procedural building",
+        "(`data/building/`) with 1 to 4 processes on this machine, the model built from its measured",
+        "per-pixel and per-message costs checked against those times, and its speed-up for 8 to 512",
+        "processes of a core each. How to run it on a cluster: [cluster.md](cluster.md).",
+    ], ["- measured at", "- scene"], [("modelled speed-up", "images/mpi-scaling.png")])
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")
