@@ -111,15 +111,17 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
   } else {
     reference_seconds = time_exact(settings.reference_method, 0, reference);
   }
-  if (job.is_root()) {
+  // The root writes between renders: as a step, so that a write that fails ends every process
+  // rather than leaving the others waiting in the next render (distributed/job.h).
+  job.step([&] {
+    if (!job.is_root()) return;
     write_exr(folder / "reference.exr", reference.radiosity);
     write_png_preview(folder / "reference.png", reference.radiosity);
-  }
+  });
 
   std::vector<SweepRow> rows;
   std::vector<ErrorMap> maps;
-  const auto record = [&](SweepRow row, const IrradianceImage& image, double seconds) {
-    if (!job.is_root()) return;  // its images hold only the tiles it rendered
+  const auto record_on_root = [&](SweepRow row, const IrradianceImage& image, double seconds) {
     row.seconds = seconds;
     if (row.exact()) {
       const IrradianceSummary summary = summarize(image);
@@ -135,6 +137,11 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
     rows.push_back(std::move(row));
     maps.push_back(std::move(map));
     if (row_done) row_done(rows.back());
+  };
+  const auto record = [&](SweepRow row, const IrradianceImage& image, double seconds) {
+    job.step([&] {
+      if (job.is_root()) record_on_root(std::move(row), image, seconds);
+    });  // the others' images hold only the tiles they rendered
   };
 
   for (const Method method : settings.methods) {

@@ -9,7 +9,8 @@
 #    the stats JSON too but for the keys that describe the run (seconds, threads, processes)
 #    and the per-pixel file's name, and the sweep's results.csv but for its seconds column.
 # 2. Faults: a scene the root cannot read; a process that cannot take what the root sent (its
-#    $TMPDIR missing); a worker and the root killed midway. Each ends the run within the timeout
+#    $TMPDIR missing); a sweep whose root cannot write between renders; a worker and the root
+#    killed midway. Each ends the run within the timeout
 #    (never a hang), with exit status non-zero, one line on stderr (`mpirun -q`, as docs/cluster.md
 #    says; the scene's warnings aside) naming the problem, and a previous output left as it was.
 # Each check can fail: the comparisons are of the files themselves (cmp), and the fault checks
@@ -95,8 +96,8 @@ done
 [ -f sweep-n3/images/hemisphere_T0.05.exr ] || fail "the sweep over 3 processes wrote no images"
 grep -q '"processes": 3' hemisphere-n3.stats.json || fail "the stats do not count 3 processes"
 
-# One line on stderr but the scene's warnings.
-error_lines() { grep -v '^warning: ' "$1"; }
+# One line on stderr but the scene's warnings (and the sweep's opening line).
+error_lines() { grep -v -E '^(warning|sweep): ' "$1"; }
 expect_one_line() {  # FILE PATTERN WHAT
   local lines
   lines=$(error_lines "$1")
@@ -122,6 +123,15 @@ status=$?
 expect_one_line tmpdir.err '^radiosity: error: process 2: cannot copy sol.vtp to a temporary folder' \
   "a process without a temporary folder"
 [ "$(cat kept.exr)" = previous ] || fail "a failed process's run touched the output"
+
+# The root cannot write between the sweep's renders (its folder cannot be made): the others,
+# already in the next render, end too.
+mpi -n 3 "$RADIOSITY" sweep "$SCENE" --solution sol.vtp --methods hemisphere --width 16 \
+  --height 16 --tolerances 0.2 -o /proc/no-such-folder/sweep 2>unwritable.err
+status=$?
+[ $status -eq 1 ] || fail "a sweep into a folder that cannot be made: exit $status, not 1"
+expect_one_line unwritable.err "^radiosity: error: /proc/no-such-folder/sweep/reference.exr: cannot create" \
+  "a sweep into a folder that cannot be made"
 
 # A process killed midway (a worker, then the root): the job ends, the old output stays.
 kill_rank_midway() {  # RANK
@@ -157,4 +167,4 @@ if [ $failures -ne 0 ]; then
   echo "$failures check(s) failed"
   exit 1
 fi
-echo "mpi_test: every output byte-identical over ${#SETTINGS[@]} settings, and 4 faults ended cleanly"
+echo "mpi_test: every output byte-identical over ${#SETTINGS[@]} settings, and 5 faults ended cleanly"
