@@ -39,6 +39,7 @@
 #include "formats/solution_io.h"
 #include "localpass/local_pass.h"
 #include "radiosity/solution_faces.h"
+#include "render/irradiance_render.h"
 #include "scene/camera.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"
@@ -156,16 +157,6 @@ std::vector<std::vector<double>> read_csv(const std::string& file) {
   return rows;
 }
 
-/// The render's tile side for `processes` (render/irradiance_render.cpp, tile_side).
-int tile_side(int width, int height, int processes) {
-  int side = 64;
-  const auto tiles = [&](int s) {
-    return static_cast<long>((width + s - 1) / s) * ((height + s - 1) / s);
-  };
-  while (side > 16 && tiles(side) < 8L * processes) side /= 2;
-  return side;
-}
-
 /// The schedule's makespan: tiles in order to whichever process is free first; process 0's
 /// worker thread pays nothing beyond the work, the others `per_block` a tile and one `service`
 /// of the root's single server each (queued when it is busy).
@@ -252,7 +243,7 @@ int model(int argc, char** argv) {
   };
   // `share`: how much longer a tile takes than alone on a core (processes sharing cores).
   const auto predict = [&](const std::vector<double>& px, int w, int h, int p, double share) {
-    const int side = tile_side(w, h, p);
+    const int side = rad::tile_side(w, h, p);
     // With more than one process every other process parses what the root sent and builds its
     // own pass after the broadcast: the setup twice, plus the broadcast.
     const double start = p == 1 ? setup : 2 * setup + broadcast(p);
@@ -300,7 +291,7 @@ int model(int argc, char** argv) {
   for (int p = 1; p <= 512; p *= 2) {
     const double s = t1_small / predict(pixel, width, height, p, 1);
     const double l = t1_large / predict(big, big_w, big_h, p, 1);
-    const int side = tile_side(big_w, big_h, p);
+    const int side = rad::tile_side(big_w, big_h, p);
     const double tiles = std::ceil(big_w / double(side)) * std::ceil(big_h / double(side));
     std::snprintf(text, sizeof text, "| %d | %.1f | %.0f%% | %.1f | %.0f%% | %.1f |\n", p, s,
                   100 * s / p, l, 100 * l / p, tiles / p);

@@ -16,11 +16,6 @@ namespace rad {
 
 namespace {
 
-/// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
-/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and reflects
-/// off mirrors (000 §3, to the scene's mirror depth; RayCaster::follow): each surface it meets
-/// is weighted by what the filters and mirrors before it pass on, and an opaque one ends it.
-/// Without filters and mirrors that is the first hit alone, as before.
 /// Appends and reads back the plain values of a tile's pixels (same binary on every process).
 class TileBytes {
  public:
@@ -42,17 +37,6 @@ class TileBytes {
   std::string_view in_;
   size_t at_ = 0;
 };
-
-/// Tiles of an MPI job's render: 64 pixels square, halved down to 16 until there are 8 tiles a
-/// process, so that the dynamic schedule has slack to even out uneven tiles.
-int tile_side(int width, int height, int processes) {
-  int side = 64;
-  const auto tiles = [&](int s) {
-    return static_cast<long>((width + s - 1) / s) * ((height + s - 1) / s);
-  };
-  while (side > 16 && tiles(side) < 8L * processes) side /= 2;
-  return side;
-}
 
 /// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
 /// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and reflects
@@ -226,6 +210,15 @@ IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
       });
   image.samples_per_pixel = paths;
   return image;
+}
+
+int tile_side(int width, int height, int processes) {
+  int side = 64;
+  const auto tiles = [&](int s) {
+    return static_cast<long>((width + s - 1) / s) * ((height + s - 1) / s);
+  };
+  while (side > 16 && tiles(side) < 8L * processes) side /= 2;
+  return side;
 }
 
 IrradianceSummary summarize(const IrradianceImage& image) {

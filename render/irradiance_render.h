@@ -59,6 +59,11 @@ struct IrradianceSummary {
 };
 IrradianceSummary summarize(const IrradianceImage& image);
 
+/// The side of the square tiles an MPI job's render hands out (the last row and column may be
+/// smaller): 64 pixels, halved down to 16 until there are 8 tiles a process, so that the dynamic
+/// schedule has slack to even out uneven tiles.
+int tile_side(int width, int height, int processes);
+
 /// The reference: B = E + rho H at the visible points with H from `paths` paths of the path
 /// tracer of the scene itself (localpass/path_tracer.h; no solution), seeded by the pixel
 /// index (bitwise the same for any thread count).
