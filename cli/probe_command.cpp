@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstring>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -19,6 +18,7 @@
 #include "cli/common.h"
 #include "cli/inputs.h"
 #include "distributed/job.h"
+#include "distributed/packed_bytes.h"
 #include "formats/atomic_file.h"
 #include "formats/points_csv.h"
 #include "formats/solution_io.h"
@@ -86,18 +86,12 @@ std::vector<ProbePoint> read_points_everywhere(const Job& job, const std::string
     if (job.is_root()) points = read_points_csv(file);
   });
   if (!job.distributed()) return points;
-  std::string bytes;
-  for (const ProbePoint& p : points) {
-    bytes.append(reinterpret_cast<const char*>(p.x.data()), 3 * sizeof(double));
-    bytes.append(reinterpret_cast<const char*>(p.n.data()), 3 * sizeof(double));
-  }
-  bytes = job.broadcast(std::move(bytes));
+  PackedBytes out;
+  for (const ProbePoint& p : points) out.put_each(p.x), out.put_each(p.n);
+  const std::string bytes = job.broadcast(out.take());
+  PackedBytes in(bytes);
   points.resize(bytes.size() / (6 * sizeof(double)));
-  for (size_t i = 0; i < points.size(); ++i) {
-    std::memcpy(points[i].x.data(), bytes.data() + 6 * sizeof(double) * i, 3 * sizeof(double));
-    std::memcpy(points[i].n.data(), bytes.data() + (6 * i + 3) * sizeof(double),
-                3 * sizeof(double));
-  }
+  for (ProbePoint& p : points) in.get_each(p.x), in.get_each(p.n);
   return points;
 }
 
@@ -222,27 +216,20 @@ void run_probe(const ProbeOptions& o) {
       });
     };
     work.pack = [&](size_t b) {
-      std::string bytes;
+      PackedBytes bytes;
       for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
-        for (const std::vector<Rgb>* c : columns)
-          bytes.append(reinterpret_cast<const char*>((*c)[i].data()), 3 * sizeof(double));
-        bytes.append(reinterpret_cast<const char*>(&bound[i]), sizeof(double));
+        for (const std::vector<Rgb>* c : columns) bytes.put_each((*c)[i]);
+        bytes.put(bound[i]);
       }
-      return bytes;
+      return bytes.take();
     };
-    work.unpack = [&](size_t b, std::string_view bytes) {
-      const size_t per_point = (3 * columns.size() + 1) * sizeof(double);
-      if (bytes.size() != range(b).size() * per_point)
-        throw Error("probe: a run of points came back with the wrong size");
-      const char* at = bytes.data();
+    work.unpack = [&](size_t b, std::string_view data) {
+      PackedBytes bytes(data);
       for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
-        for (std::vector<Rgb>* c : columns) {
-          std::memcpy((*c)[i].data(), at, 3 * sizeof(double));
-          at += 3 * sizeof(double);
-        }
-        std::memcpy(&bound[i], at, sizeof(double));
-        at += sizeof(double);
+        for (std::vector<Rgb>* c : columns) bytes.get_each((*c)[i]);
+        bytes.get(bound[i]);
       }
+      if (!bytes.at_end()) throw Error("probe: a run of points came back with the wrong size");
     };
     work.progress = [&](size_t blocks) {
       const size_t finished = std::min(points.size(), blocks * run);

@@ -6,3 +6,4 @@
 ///
 /// May use: scene (its error types), geometry, MPI (in its .cpp files only).
 #include "distributed/job.h"
+#include "distributed/packed_bytes.h"

@@ -5,38 +5,16 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <string>
 #include <string_view>
 
+#include "distributed/packed_bytes.h"
 #include "scene/error.h"
 #include "scene/point_lights.h"
 
 namespace rad {
 
 namespace {
-
-/// Appends and reads back the plain values of a tile's pixels (same binary on every process).
-class TileBytes {
- public:
-  template <typename T>
-  void put(const T& value) {
-    out_.append(reinterpret_cast<const char*>(&value), sizeof value);
-  }
-  explicit TileBytes(std::string_view in = {}) : in_(in) {}
-  template <typename T>
-  void get(T& value) {
-    if (in_.size() - at_ < sizeof value) throw Error("render: a tile's bytes are cut short");
-    std::memcpy(&value, in_.data() + at_, sizeof value);
-    at_ += sizeof value;
-  }
-  std::string take() { return std::move(out_); }
-
- private:
-  std::string out_;
-  std::string_view in_;
-  size_t at_ = 0;
-};
 
 /// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
 /// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and reflects
@@ -105,10 +83,10 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
   work.blocks = tiles;
   work.compute = [&](size_t tile) { tbb::parallel_for(range_of(tile), render_range); };
   work.pack = [&](size_t tile) {
-    TileBytes bytes;
+    PackedBytes bytes;
     for_each_pixel(tile, [&](size_t i) {
       for (const Image* image : {&out.radiosity, &out.refracted, &out.glossy, &out.bound})
-        for (int c = 0; c < 3; ++c) bytes.put(image->pixels[i][c]);
+        bytes.put_each(image->pixels[i]);
       bytes.put(out.gathered_exactly[i]);
       bytes.put(out.projected[i]);
       bytes.put(out.clusters[i]);
@@ -117,15 +95,16 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
     return bytes.take();
   };
   work.unpack = [&](size_t tile, std::string_view data) {
-    TileBytes bytes(data);
+    PackedBytes bytes(data);
     for_each_pixel(tile, [&](size_t i) {
       for (Image* image : {&out.radiosity, &out.refracted, &out.glossy, &out.bound})
-        for (int c = 0; c < 3; ++c) bytes.get(image->pixels[i][c]);
+        bytes.get_each(image->pixels[i]);
       bytes.get(out.gathered_exactly[i]);
       bytes.get(out.projected[i]);
       bytes.get(out.clusters[i]);
       bytes.get(out.surface[i]);
     });
+    if (!bytes.at_end()) throw Error("render: a tile came back with the wrong size");
   };
   const size_t tile_pixels = static_cast<size_t>(side) * side;
   work.progress = [&](size_t blocks) {
