@@ -1,22 +1,34 @@
 #include "radiosity/shadow_culling.h"
 
 #include <cmath>
+#include <functional>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "geometry/shaft.h"
 
 namespace rad {
 
-ShadowCulling::ShadowCulling(const Scene& scene, double pad) : scene_(scene), pad_(pad) {
+namespace {
+
+BoxTree<3> polygon_boxes(const Scene& scene) {
+  std::vector<Eigen::AlignedBox3d> boxes;
   for (const Polygon& p : scene.polygons) {
     Eigen::AlignedBox3d box;
     for (const Vec3& v : p.vertices) box.extend(v);
-    boxes_.push_back(box);
+    boxes.push_back(box);
   }
+  return BoxTree<3>(std::move(boxes));
 }
 
+}  // namespace
+
+ShadowCulling::ShadowCulling(const Scene& scene, double pad)
+    : scene_(scene), boxes_(polygon_boxes(scene)), pad_(pad) {}
+
 bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector<Vec3>& corners,
-                                  int shooter) const {
+                                  int shooter, const std::function<bool()>& on_the_way) const {
   // The shaft's box (Shaft's hull box): a polygon whose box misses it misses the shaft, and
   // the test is cheaper than the plane test and far cheaper than building the shaft.
   Eigen::AlignedBox3d corner_box;
@@ -26,9 +38,9 @@ bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector
   hull.max().array() += pad_;
   hull.extend(x);
   std::optional<Shaft> shaft;  // built only for a polygon in its box that no plane separates
-  for (size_t p = 0; p < scene_.polygons.size(); ++p) {
-    if (static_cast<int>(p) == receiver || static_cast<int>(p) == shooter) continue;
-    if (!hull.intersects(boxes_[p])) continue;
+  // Whether the answer is true does not depend on the order the polygons are looked at in.
+  return boxes_.any_of(hull, [&](int p) {
+    if (p == receiver || p == shooter) return false;
     const Polygon& polygon = scene_.polygons[p];
     const Vec3& origin = polygon.vertices.front();
     // x and every corner strictly on one side: no segment between them meets the plane.
@@ -38,11 +50,13 @@ bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector
       const double s = polygon.normal.dot(corners[i] - origin);
       one_side = std::abs(s) > pad_ && (s > 0) == (side > 0);
     }
-    if (one_side) continue;
-    if (!shaft) shaft.emplace(x, corner_box, pad_);
-    if (shaft->may_meet(polygon.vertices, boxes_[p])) return true;
-  }
-  return false;
+    if (one_side) return false;
+    if (!shaft) {
+      if (on_the_way && on_the_way()) return true;
+      shaft.emplace(x, corner_box, pad_);
+    }
+    return shaft->may_meet(polygon.vertices, boxes_.box(p));
+  });
 }
 
 }  // namespace rad

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
 
@@ -227,6 +228,16 @@ double Shooter::visible_fraction(const Vec3& x, const Patch& shooter, uint64_t k
   return static_cast<double>(passed) / (side * side);
 }
 
+bool Shooter::something_on_the_way(const Vec3& x, int polygon, const Patch& shooter) const {
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& c : shooter.corners) centre += c;
+  centre /= static_cast<double>(shooter.corners.size());
+  const std::optional<RayCaster::Segment> s = leg_segment(x, centre);
+  if (!s) return false;
+  const std::optional<Hit> hit = caster_.closest_hit(s->ray, s->t_min, s->t_max);
+  return hit && hit->polygon != polygon && hit->polygon != shooter.polygon;
+}
+
 Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                                 uint64_t key, int side) const {
   if (polygon == shooter.polygon) return Rgb::Zero();  // a planar polygon cannot see itself
@@ -234,8 +245,11 @@ Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const
   const double ff = point_polygon_form_factor(x, n, shooter.corners);
   if (!(ff > 0)) return Rgb::Zero();
   ++pairs_;
-  // Nothing between them: every ray would pass, so cast none.
-  if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon)) {
+  // Nothing between them: every ray would pass, so cast none. (The question goes by reference:
+  // a std::function holds that without allocating, once per pair.)
+  const auto on_the_way = [&] { return something_on_the_way(x, polygon, shooter); };
+  if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon,
+                                       std::cref(on_the_way))) {
     ++unhidden_;
     return Rgb::Constant(ff);
   }

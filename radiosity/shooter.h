@@ -52,6 +52,11 @@ class Shooter {
   /// `distance`: x lies near a concave junction or a contact.
   bool faces_within(const Vec3& x, const Vec3& n, double distance) const;
 
+  /// True when a polygon other than the receiver's and the shooter's crosses the segment from
+  /// x to the shooter's centre: one ray, which ShadowCulling::may_be_hidden asks for before it
+  /// builds a shaft (its `on_the_way`).
+  bool something_on_the_way(const Vec3& x, int polygon, const Patch& shooter) const;
+
   /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
   std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
 

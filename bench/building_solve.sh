@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Issue 21: solving the procedural building (data/building/make_building.py) as it grows, this
+# commit's `radiosity solve` against an earlier commit's (before the shaft culling's scan was
+# replaced by one ray where something lies on the way, and its pass over every polygon by a box
+# tree: radiosity/shooter.h, radiosity/shadow_culling.h). Writes bench/results/building_solve.md.
+#
+# Each size runs the two binaries back to back, PAIRS times, and checks that their solutions
+# are the same bytes. The default building (46,005 polygons) runs with this commit's binary
+# only: the earlier one's rate is measured over its first SHOTS shots instead (it would take
+# hours). About 60 minutes on 2 cores (5 more to build the earlier commit's CLI, once).
+#
+#   bash bench/building_solve.sh [BUILD_DIR] [BASE_COMMIT] [PAIRS] [SHOTS]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source bench/provenance.sh
+build=${1:-build}
+base=${2:-908448c}
+pairs=${3:-3}
+shots=${4:-300}
+out=bench/results
+scratch=out/building-solve
+mkdir -p "$out" "$scratch"
+base_dir="${TMPDIR:-/tmp}/rad-base-$(git rev-parse --short "$base")"
+if [ ! -x "$base_dir/build/cli/radiosity" ]; then
+  echo "building $base's radiosity in $base_dir" >&2
+  rm -rf "$base_dir"
+  git worktree prune
+  git worktree add --detach "$base_dir" "$base" >/dev/null
+  cmake -S "$base_dir" -B "$base_dir/build" -DCMAKE_BUILD_TYPE=Release -DRAD_BUILD_TESTS=OFF \
+    -DRAD_BUILD_BENCH=OFF >/dev/null
+  cmake --build "$base_dir/build" --target radiosity -j2 >/dev/null
+fi
+# The solver's settings for a scene of this size: one element per patch, no adaptive
+# refinement, stop at 2% unshot (the local pass computes the exact irradiance from it).
+coarse="--element-levels 0 --refine-threshold 0 --unshot 0.02"
+for size in "1 2 2" "1 3 3" "1 5 5" "3 5 5"; do
+  read -r storeys rx rz <<<"$size"
+  python3 data/building/make_building.py --storeys "$storeys" --rooms-x "$rx" --rooms-z "$rz" \
+    -o "$scratch/building-$storeys-$rx-$rz.json"
+done
+table=$(python3 - "$base_dir/build/cli/radiosity" "$build/cli/radiosity" "$pairs" "$shots" \
+  "$scratch" "$coarse" "$base" <<'PY'
+import filecmp, os, re, statistics, subprocess, sys, time
+
+base, new, pairs, shots, scratch, coarse, base_commit = sys.argv[1:8]
+pairs, shots, coarse = int(pairs), int(shots), coarse.split()
+points = open(os.path.join(scratch, "chart.csv"), "w")
+points.write("series,polygons,seconds\n")
+
+def solve(binary, scene, output, extra=()):
+    """Wall seconds and the summary line's numbers of one solve."""
+    start = time.monotonic()
+    proc = subprocess.run([binary, "solve", scene, "-o", output, *coarse, *extra],
+                          capture_output=True, text=True)
+    wall = time.monotonic() - start
+    if proc.returncode != 0:
+        sys.exit(f"{binary} solve {scene} failed: {proc.stderr.strip()}")
+    m = re.search(r"solve: (\d+) patches, \d+ elements .*?, (\d+) shots, unshot ([\d.e+-]+)%",
+                  proc.stderr)
+    return wall, int(m.group(1)), int(m.group(2)), float(m.group(3))
+
+def polygons(scene):
+    import json
+    data = json.load(open(scene))
+    return sum(len(o.get("polygons", [])) for o in data["objects"])
+
+med = statistics.median
+print("| building (storeys x rooms) | polygons | patches | shots | earlier s | this s | "
+      "ratio (median) | same bytes |")
+print("|---|---|---|---|---|---|---|---|")
+for name in ["1-2-2", "1-3-3", "1-5-5"]:
+    scene = os.path.join(scratch, f"building-{name}.json")
+    a, b = os.path.join(scratch, "base.vtp"), os.path.join(scratch, "new.vtp")
+    rows = []
+    for i in range(pairs):
+        rb = solve(base, scene, a)
+        rn = solve(new, scene, b)
+        same = filecmp.cmp(a, b, shallow=False)
+        rows.append((rb, rn, same))
+        print(f"{name} pair {i + 1}: {rb[0]:.1f} s -> {rn[0]:.1f} s, same bytes: {same}",
+              file=sys.stderr)
+    _, patches, n_shots, _ = rows[0][1]
+    points.write(f"earlier ({base_commit}),{polygons(scene)},{med(r[0][0] for r in rows)}\n")
+    points.write(f"this commit,{polygons(scene)},{med(r[1][0] for r in rows)}\n")
+    print(f"| {name.replace('-', ' x ', 1).replace('-', ' x ')} | {polygons(scene)} | {patches} | "
+          f"{n_shots} | {med(r[0][0] for r in rows):.1f} | {med(r[1][0] for r in rows):.1f} | "
+          f"**{med(r[1][0] / r[0][0] for r in rows):.3f}** | "
+          f"{'yes' if all(r[2] for r in rows) else 'NO'} |")
+# The default building: the first `shots` shots with both (same bytes), then the whole solve
+# with this commit's binary.
+scene = os.path.join(scratch, "building-3-5-5.json")
+a, b = os.path.join(scratch, "base.vtp"), os.path.join(scratch, "new.vtp")
+limit = ["--max-shots", str(shots)]
+rb = solve(base, scene, a, limit)
+rn = solve(new, scene, b, limit)
+same = filecmp.cmp(a, b, shallow=False)
+print(f"default, {shots} shots: {rb[0]:.1f} s -> {rn[0]:.1f} s, same bytes: {same}", file=sys.stderr)
+print(f"| 3 x 5 x 5, first {shots} shots | {polygons(scene)} | {rn[1]} | {shots} | {rb[0]:.1f} | "
+      f"{rn[0]:.1f} | **{rn[0] / rb[0]:.3f}** | {'yes' if same else 'NO'} |")
+full = solve(new, scene, b)
+print(f"default, whole: {full[0]:.1f} s, {full[2]} shots", file=sys.stderr)
+points.write(f"this commit,{polygons(scene)},{full[0]}\n")
+points.close()
+print(f"| 3 x 5 x 5, whole solve | {polygons(scene)} | {full[1]} | {full[2]} | | "
+      f"{full[0]:.1f} | | |")
+print()
+print(f"The whole default solve stopped at {full[3]:.3g}% unshot after {full[2]} shots.")
+PY
+)
+{
+  echo "# Solving the procedural building"
+  echo
+  echo "Produced by \`bash bench/building_solve.sh $build $base $pairs $shots\`: \`radiosity solve\`"
+  echo "on buildings of \`data/building/make_building.py --storeys S --rooms-x X --rooms-z Z\`"
+  echo "with \`$coarse\`, on all cores; the earlier commit's binary (\`$base\`) and"
+  echo "this one's back to back, $pairs pairs per size (seconds are medians, the ratio is the median"
+  echo "of the pairs' new / earlier). \"Same bytes\": the two solution files are identical."
+  provenance geometry scene radiosity cli data/building
+  echo
+  echo "$table"
+  echo
+  echo "![solve time against polygons](../../docs/images/building-solve.png)"
+} > "$out/building_solve.md"
+"$build/bench/line_chart" docs/images/building-solve.png "$scratch/chart.csv" \
+  "radiosity solve on the procedural building (coarse settings)" "polygons" "seconds" log
+cat "$out/building_solve.md"
