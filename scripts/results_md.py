@@ -39,6 +39,21 @@ def bench_tables(out, path, title, intro, prefixes, charts):
     out.append("")
 
 
+def versus_section(out, path, title, intro, keep, tail):
+    """A section comparing this commit's binary with an earlier one's, if the file exists: the
+    title, the intro, where it ran, the table rows `keep` selects, then `tail` (lines)."""
+    if not os.path.exists(path):
+        return
+    lines = open(path).read().split("\n")
+    out.extend([title, ""] + intro + [""])
+    out.extend(provenance(lines))
+    out.append("")
+    table = [line for line in lines if line.startswith("|")]
+    out.extend(line for i, line in enumerate(table) if i < 2 or keep(line))
+    out.append("")
+    out.extend(tail(lines))
+
+
 def fmt(value, digits=3):
     return f"{float(value):.{digits}g}"
 
@@ -147,19 +162,12 @@ def main():
             w("")
         w("![error against solve time](images/global-accuracy.png)")
         w("")
-    if os.path.exists("bench/results/solve_versus.md"):
-        lines = open("bench/results/solve_versus.md").read().split("\n")
-        w("### The default solve against the solve before this work")
-        w("")
-        w("From [`bench/results/solve_versus.md`](../bench/results/solve_versus.md)")
-        w("(`bash bench/solve_versus.sh`): the Cornell box's default solve, this commit's binary and")
-        w("the earlier commit's back to back in pairs; ratios new / base, medians over the pairs.")
-        w("")
-        out.extend(provenance(lines))
-        w("")
-        table = [line for line in lines if line.startswith("|")]
-        out.extend(table[:2] + [line for line in table if "median" in line])
-        w("")
+    versus_section(out, "bench/results/solve_versus.md",
+                   "### The default solve against the solve before this work", [
+        "From [`bench/results/solve_versus.md`](../bench/results/solve_versus.md)",
+        "(`bash bench/solve_versus.sh`): the Cornell box's default solve, this commit's binary and",
+        "the earlier commit's back to back in pairs; ratios new / base, medians over the pairs.",
+    ], lambda line: "median" in line, lambda lines: [])
     bench_tables(out, "bench/results/refraction.md",
                  "## Refraction: the heuristic against the path tracer", [
         "From [`bench/results/refraction.md`](../bench/results/refraction.md)",
@@ -187,6 +195,15 @@ def main():
         "per-pixel and per-message costs checked against those times, and its speed-up for 8 to 512",
         "processes of a core each. How to run it on a cluster: [cluster.md](cluster.md).",
     ], ["- measured at", "- scene"], [("modelled speed-up", "images/mpi-scaling.png")])
+    versus_section(out, "bench/results/building_solve.md", "## Solving the procedural building", [
+        "From [`bench/results/building_solve.md`](../bench/results/building_solve.md)",
+        "(`bash bench/building_solve.sh`): `radiosity solve` on buildings of `data/building/` as",
+        "they grow, with the coarse settings a building needs, this commit's binary against the one",
+        "before the solver's shaft culling scanned a box tree and asked one ray first (same",
+        "solutions to the byte); the default building (3 storeys of 5 x 5 rooms) whole with this",
+        "commit's only. Ratios new / earlier, medians over the pairs.",
+    ], lambda line: True, lambda lines: [line for line in lines if line.startswith("The whole")] +
+       ["", "![solve time against polygons](images/building-solve.png)", ""])
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")
