@@ -13,6 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/provenance.sh
+source bench/earlier_binary.sh
 build=${1:-build}
 base=${2:-908448c}
 pairs=${3:-3}
@@ -20,16 +21,7 @@ shots=${4:-300}
 out=bench/results
 scratch=out/building-solve
 mkdir -p "$out" "$scratch"
-base_dir="${TMPDIR:-/tmp}/rad-base-$(git rev-parse --short "$base")"
-if [ ! -x "$base_dir/build/cli/radiosity" ]; then
-  echo "building $base's radiosity in $base_dir" >&2
-  rm -rf "$base_dir"
-  git worktree prune
-  git worktree add --detach "$base_dir" "$base" >/dev/null
-  cmake -S "$base_dir" -B "$base_dir/build" -DCMAKE_BUILD_TYPE=Release -DRAD_BUILD_TESTS=OFF \
-    -DRAD_BUILD_BENCH=OFF >/dev/null
-  cmake --build "$base_dir/build" --target radiosity -j2 >/dev/null
-fi
+earlier=$(earlier_radiosity "$base")
 # The solver's settings for a scene of this size: one element per patch, no adaptive
 # refinement, stop at 2% unshot (the local pass computes the exact irradiance from it).
 coarse="--element-levels 0 --refine-threshold 0 --unshot 0.02"
@@ -38,9 +30,9 @@ for size in "1 2 2" "1 3 3" "1 5 5" "3 5 5"; do
   python3 data/building/make_building.py --storeys "$storeys" --rooms-x "$rx" --rooms-z "$rz" \
     -o "$scratch/building-$storeys-$rx-$rz.json"
 done
-table=$(python3 - "$base_dir/build/cli/radiosity" "$build/cli/radiosity" "$pairs" "$shots" \
+table=$(python3 - "$earlier" "$build/cli/radiosity" "$pairs" "$shots" \
   "$scratch" "$coarse" "$base" <<'PY'
-import filecmp, os, re, statistics, subprocess, sys, time
+import filecmp, json, os, re, statistics, subprocess, sys, time
 
 base, new, pairs, shots, scratch, coarse, base_commit = sys.argv[1:8]
 pairs, shots, coarse = int(pairs), int(shots), coarse.split()
@@ -60,7 +52,6 @@ def solve(binary, scene, output, extra=()):
     return wall, int(m.group(1)), int(m.group(2)), float(m.group(3))
 
 def polygons(scene):
-    import json
     data = json.load(open(scene))
     return sum(len(o.get("polygons", [])) for o in data["objects"])
 

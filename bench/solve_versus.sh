@@ -8,23 +8,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/provenance.sh
+source bench/earlier_binary.sh
 build=${1:-build}
 base=${2:-ee5828c}
 pairs=${3:-8}
 scene=data/cornell-box/scene.json
 out=bench/results
 mkdir -p "$out"
-base_dir="${TMPDIR:-/tmp}/rad-base-$(git rev-parse --short "$base")"
-if [ ! -x "$base_dir/build/cli/radiosity" ]; then
-  echo "building $base's radiosity in $base_dir" >&2
-  rm -rf "$base_dir"
-  git worktree prune
-  git worktree add --detach "$base_dir" "$base" >/dev/null
-  cmake -S "$base_dir" -B "$base_dir/build" -DCMAKE_BUILD_TYPE=Release -DRAD_BUILD_TESTS=OFF \
-    -DRAD_BUILD_BENCH=OFF >/dev/null
-  cmake --build "$base_dir/build" --target radiosity -j2 >/dev/null
-fi
-table=$(python3 - "$base_dir/build/cli/radiosity" "$build/cli/radiosity" "$pairs" "$scene" <<'PY'
+earlier=$(earlier_radiosity "$base")
+table=$(python3 - "$earlier" "$build/cli/radiosity" "$pairs" "$scene" <<'PY'
 import os, statistics, subprocess, sys, tempfile, time
 
 base, new, pairs, scene = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
