@@ -1,6 +1,8 @@
 #include "hemisphere/spherical_polygon.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "geometry/lambert.h"
@@ -19,6 +21,35 @@ double fan_measure(const Directions& v) {
 }
 
 bool coincident(const Vec3& a, const Vec3& b) { return (a - b).squaredNorm() <= 1e-30; }
+
+using Sides = boost::container::small_vector<double, 8>;
+
+/// Whether the signs of the vertices' sides (s_i; 0: on the plane) are ones a convex polygon
+/// can have: all on one side, or, going round, one run above and one run below, with at most
+/// one vertex on the plane where each run ends. A vertex on the plane between two below it
+/// (the polygon touches the plane there), or two on it (an edge on it), leaves nothing above.
+bool convex_pattern(const Sides& s) {
+  const size_t count = s.size();
+  size_t start = count;  // a vertex below that follows one that is not
+  for (size_t i = 0; i < count && start == count; ++i)
+    if (s[i] < 0 && !(s[(i + count - 1) % count] < 0)) start = i;
+  if (start == count) return true;  // nothing below, or nothing else
+  // From `start`: below+, [on], above+, [on], and back to `start`.
+  size_t i = 0;
+  const auto sign = [&](size_t k) { return s[(start + k) % count]; };
+  while (i < count && sign(i) < 0) ++i;
+  if (i == count) return true;  // all below
+  if (sign(i) == 0) ++i;
+  if (i == count || !(sign(i) > 0)) {
+    // No run above after the run below: above nowhere, or a pattern no convex polygon has.
+    for (size_t k = i; k < count; ++k)
+      if (sign(k) > 0) return false;
+    return true;
+  }
+  while (i < count && sign(i) > 0) ++i;
+  if (i < count && sign(i) == 0) ++i;
+  return i == count;  // what remains is the vertex on the plane before `start`, or nothing
+}
 
 }  // namespace
 
@@ -103,14 +134,25 @@ int SphericalPolygon::side_of(const Vec3& m) const {
 
 std::pair<SphericalPolygon, SphericalPolygon> SphericalPolygon::split(const Vec3& m) const {
   const size_t count = vertices_.size();
-  boost::container::small_vector<double, 8> s(count);
-  bool any_pos = false, any_neg = false;
+  Sides s(count);
   for (size_t i = 0; i < count; ++i) {
     s[i] = m.dot(vertices_[i]);
     if (std::abs(s[i]) <= kOnPlane) s[i] = 0;
-    any_pos |= s[i] > 0;
-    any_neg |= s[i] < 0;
   }
+  // Rounding can put vertices that lie on the plane (a chain of collinear vertices along an edge
+  // the plane runs through) a few ulps to either side of it, in an order no convex polygon has;
+  // Sutherland-Hodgman then builds a sliver whose stored edge planes run out and back with the
+  // same normal, and Lambert's formula gives it a large form factor (issue 36). Such a pattern
+  // comes from rounding alone, so the smallest offsets go onto the plane until it is convex.
+  while (!convex_pattern(s)) {
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const double si : s)
+      if (si != 0) smallest = std::min(smallest, std::abs(si));
+    for (double& si : s)
+      if (std::abs(si) <= smallest) si = 0;
+  }
+  bool any_pos = false, any_neg = false;
+  for (const double si : s) any_pos |= si > 0, any_neg |= si < 0;
   if (!any_neg) return {*this, SphericalPolygon()};
   if (!any_pos) return {SphericalPolygon(), *this};
 

@@ -286,9 +286,13 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n, doub
                                             [&](int p) { return filter_polygon_[p] != 0; });
     const bool query = !t.seen_whole() && queries &&
                        (cluster.is_leaf() ? faces_by_query && !through_filter : !exact_only);
-    const double visible = query ? visible_form_factor(cluster, begin, end, false) : ff;
-    const double visible_hi =
-        query && through_filter ? visible_form_factor(cluster, begin, end, true) : visible;
+    // What is visible of the outline is part of it: a query above ff is rounding or a defect
+    // of the visibility structure (issue 36 found one), and must not raise a lower end.
+    const double visible =
+        query ? std::min(ff, visible_form_factor(cluster, begin, end, false)) : ff;
+    const double visible_hi = query && through_filter
+                                  ? std::min(ff, visible_form_factor(cluster, begin, end, true))
+                                  : visible;
     const bool known = t.seen_whole() || query;
     if (cluster.is_leaf() && known) {  // exact: B FF(x, visible part of the face)
       exact += faces_[cluster.face].exitance * visible;

@@ -46,6 +46,45 @@ TEST(SphericalPolygon, SplitPartsAddUpAndLieOnTheirSides) {
   EXPECT_EQ(right.vertices().size(), 3u);
 }
 
+// A mesh's boundary seen from close by: an edge of several collinear vertices, each a few ulps
+// off its line, cut by that line's plane (a neighbouring polygon's edge). The signs can then
+// form a pattern no convex polygon has (on the plane, below, above, below: issue 36). Before the
+// fix the part above became a sliver whose stored edge planes ran out and back with the same
+// normal, and Lambert's formula gave it the form factor of half the polygon (0.104 of a 0.127
+// cluster at a Cornell box pixel, where the local pass's certified bound then failed).
+TEST(SphericalPolygon, SplitAlongANoisyChainOfCollinearVerticesAddsUp) {
+  std::mt19937_64 rng(36);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  int cut_by_noise = 0;
+  // Not perpendicular to the cutting plane: Lambert's terms along it count.
+  const Vec3 receiver = Vec3(0.2, -0.4, 0.9).normalized();
+  for (int trial = 0; trial < 4000; ++trial) {
+    // The edge lies on the plane y = 0 through x (its chain at height 1, from x = -1 to 1); the
+    // rest of the polygon at y > 0.
+    std::vector<Vec3> directions{{-1, 0, 1}};
+    for (const double t : {-0.6, -0.2, 0.3, 0.7}) directions.emplace_back(t, ulps(rng) * 1e-15, 1);
+    directions.insert(directions.end(), {{1, 0, 1}, {0.8, 1, 1}, {-0.7, 1.2, 1}});
+    const SphericalPolygon polygon(directions);
+    ASSERT_FALSE(polygon.empty());
+    const double whole = polygon.form_factor(receiver);
+    // The cutting plane: y = 0 itself, either way round, or tilted by an ulp.
+    const Vec3 m = Vec3(ulps(rng) * 1e-16, trial % 2 ? 1.0 : -1.0, ulps(rng) * 1e-16).normalized();
+    // Cut by noise alone: vertices beyond split()'s 1e-15 on both sides.
+    bool above_by_noise = false, below_by_noise = false;
+    for (const Vec3& v : polygon.vertices()) {
+      above_by_noise |= m.dot(v) > 1e-15;
+      below_by_noise |= m.dot(v) < -1e-15;
+    }
+    cut_by_noise += above_by_noise && below_by_noise;
+    const auto [pos, neg] = polygon.split(m);
+    const double above = pos.form_factor(receiver), below = neg.form_factor(receiver);
+    ASSERT_NEAR(above + below, whole, 1e-13) << "trial " << trial;
+    // Everything but a sliver of noise lies on the polygon's side of the plane.
+    ASSERT_LT(std::min(above, below), 1e-13) << "trial " << trial;
+  }
+  EXPECT_GT(cut_by_noise, 1000) << "the test must reach the case it is for";
+}
+
 TEST(SphericalPolygon, HolesSubtractWithTheirOrientation) {
   // A 4 x 4 square with a 1 x 1 hole, at height 1: FF = FF(outer) - FF(hole), and the hole
   // listed the other way round does exactly that.
