@@ -25,30 +25,31 @@ bool coincident(const Vec3& a, const Vec3& b) { return (a - b).squaredNorm() <= 
 using Sides = boost::container::small_vector<double, 8>;
 
 /// Whether the signs of the vertices' sides (s_i; 0: on the plane) are ones a convex polygon
-/// can have: all on one side, or, going round, one run above and one run below, with at most
-/// one vertex on the plane where each run ends. A vertex on the plane between two below it
-/// (the polygon touches the plane there), or two on it (an edge on it), leaves nothing above.
+/// can have: all on one side, or, going round, one run above and one run below, with vertices
+/// on the plane only where one run meets the other (a run of them there: nearly coincident
+/// vertices). A vertex on the plane between two below it means the polygon touches the plane
+/// there and lies below it, so with a vertex above elsewhere the pattern is rounding's.
 bool convex_pattern(const Sides& s) {
   const size_t count = s.size();
+  const auto sign = [&](size_t i) { return s[i % count] > 0 ? 1 : s[i % count] < 0 ? -1 : 0; };
   size_t start = count;  // a vertex below that follows one that is not
   for (size_t i = 0; i < count && start == count; ++i)
-    if (s[i] < 0 && !(s[(i + count - 1) % count] < 0)) start = i;
-  if (start == count) return true;  // nothing below, or nothing else
-  // From `start`: below+, [on], above+, [on], and back to `start`.
-  size_t i = 0;
-  const auto sign = [&](size_t k) { return s[(start + k) % count]; };
-  while (i < count && sign(i) < 0) ++i;
-  if (i == count) return true;  // all below
-  if (sign(i) == 0) ++i;
-  if (i == count || !(sign(i) > 0)) {
-    // No run above after the run below: above nowhere, or a pattern no convex polygon has.
-    for (size_t k = i; k < count; ++k)
-      if (sign(k) > 0) return false;
-    return true;
+    if (sign(i) < 0 && sign(i + count - 1) >= 0) start = i;
+  if (start == count) return true;  // nothing below, or all below
+  // The runs from `start` round: below, [on], above, [on], and nothing else.
+  int runs[4], run_count = 0;
+  for (size_t k = 0; k < count; ++k) {
+    const int c = sign(start + k);
+    if (run_count > 0 && runs[run_count - 1] == c) continue;
+    if (run_count == 4) return false;
+    runs[run_count++] = c;
   }
-  while (i < count && sign(i) > 0) ++i;
-  if (i < count && sign(i) == 0) ++i;
-  return i == count;  // what remains is the vertex on the plane before `start`, or nothing
+  static constexpr int kRuns[][4] = {{-1, 1}, {-1, 0, 1}, {-1, 1, 0}, {-1, 0, 1, 0}};
+  static constexpr int kLengths[] = {2, 3, 3, 4};
+  for (int p = 0; p < 4; ++p)
+    if (run_count == kLengths[p] && std::equal(runs, runs + run_count, kRuns[p])) return true;
+  // Nothing above: below and on the plane only (the polygon touches it).
+  return std::none_of(runs, runs + run_count, [](int c) { return c > 0; });
 }
 
 }  // namespace
