@@ -62,6 +62,43 @@ class BoxTree {
     return false;
   }
 
+  /// Walks the tree nearest first from `point` (by the distance to a box; a box holding the
+  /// point is at distance 0): enter(box) is asked of each node reached, and only a node it
+  /// accepts is opened; the items of opened leaves go to visit(item), in order of the distance
+  /// to their boxes (nodes and items share one queue). A visit may change what enter answers
+  /// next (an occlusion walk inserts what it sees), which is why the order is nearest first.
+  template <class Enter, class Visit>
+  void nearest_first(const Eigen::Matrix<double, Dim, 1>& point, Enter&& enter,
+                     Visit&& visit) const {
+    if (nodes_.empty()) return;
+    // (squared distance, node index, or -1 - item for an item); nearer first, then by index.
+    using Entry = std::pair<double, int>;
+    std::vector<Entry> heap{{nodes_[0].box.squaredExteriorDistance(point), 0}};
+    const auto farther = [](const Entry& a, const Entry& b) { return a > b; };
+    const auto push = [&](double distance, int entry) {
+      heap.emplace_back(distance, entry);
+      std::push_heap(heap.begin(), heap.end(), farther);
+    };
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), farther);
+      const int entry = heap.back().second;
+      heap.pop_back();
+      if (entry < 0) {
+        visit(-1 - entry);
+        continue;
+      }
+      const Node& node = nodes_[entry];
+      if (!enter(node.box)) continue;
+      if (node.left >= 0) {
+        for (const int child : {node.left, node.left + 1})
+          push(nodes_[child].box.squaredExteriorDistance(point), child);
+        continue;
+      }
+      for (int i = node.first; i < node.first + node.count; ++i)
+        push(boxes_[items_[i]].squaredExteriorDistance(point), -1 - items_[i]);
+    }
+  }
+
   /// Whether any item's box intersects `query`; stops at the first.
   bool any(const Box& query) const {
     return any_of(query, [](int) { return true; });

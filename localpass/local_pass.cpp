@@ -78,6 +78,12 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
        faces_from_polygons(scene, std::vector<Rgb>(scene.polygons.size(), Rgb::Zero())))
     blocker_pieces_[piece.polygon].push_back(std::move(piece));
   in_plane_ = tolerance_.in_plane;
+  if (static_cast<long>(scene.polygons.size()) >= settings.visible_set_from) {
+    visible_set_ = std::make_unique<VisibleSet>(scene, blocker_pieces_);
+    root_of_polygon_.assign(scene.polygons.size(), -1);
+    for (const int root : clusters_.roots())
+      root_of_polygon_[clusters_.clusters()[root].polygon] = root;
+  }
   mirror_culling_ = settings.mirror_culling;
   if (!scene.lights.empty()) lights_ = std::make_unique<PointLightVisibility>(scene);
   if (settings.glossy_transfer) {
@@ -93,6 +99,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   unfolded.mirror_depth = 0;         // an unfolded scene has no mirrors (images never reflect)
   unfolded.refraction_depth = 0;     // refraction is gathered at the real receiver only
   unfolded.glossy_transfer = false;  // nor glossy transfer
+  unfolded.visible_set_from = std::numeric_limits<int>::max();  // unfolded scenes: not measured
   const int depth = settings.mirror_depth.value_or(scene.mirror_depth);
   for (const std::vector<int>& chain : mirror_chains(pieces, depth, in_plane_)) {
     auto m = std::make_unique<Mirror>();
@@ -230,7 +237,15 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n, doub
                                               const Rgb& exact_part) const {
   LocalPassResult result;
   const std::vector<Cluster>& clusters = clusters_.clusters();
-  const std::vector<int> candidates = culling_.candidates(x, n);
+  // What x may see (localpass/visible_set.h): the roots of the sum and the candidate blockers;
+  // without the visibility culling, the whole scene.
+  std::vector<int> seen;
+  if (visible_set_) {
+    seen = visible_set_->polygons(x, n);
+    result.visible_polygons = static_cast<int>(seen.size());
+  }
+  const std::vector<int> candidates =
+      visible_set_ ? culling_.candidates(x, n, seen) : culling_.candidates(x, n);
   const bool exact_only = !(tolerance > 0);
 
   // The sum H = exact + sum of heap terms + sum of pending terms + gathered, each in its interval.
@@ -374,13 +389,19 @@ LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n, doub
     pool.insert(pool.end(), scratch.begin(), scratch.end());
     add(c, own, static_cast<int>(pool.size()));
   };
-  for (const int root : clusters_.roots()) {
+  const auto add_root = [&](int root) {
     const Cluster& cluster = clusters[root];
-    if (!culling_.in_front_of_polygon(cluster.polygon, x)) continue;  // it cannot light x
+    if (!culling_.in_front_of_polygon(cluster.polygon, x)) return;  // it cannot light x
     culling_.blockers(candidates, x, cluster.box, cluster.outline, cluster.polygon, &scratch);
     const int own = static_cast<int>(pool.size());
     pool.insert(pool.end(), scratch.begin(), scratch.end());
     add(root, own, static_cast<int>(pool.size()));
+  };
+  if (visible_set_) {
+    for (const int p : seen)
+      if (root_of_polygon_[p] >= 0) add_root(root_of_polygon_[p]);
+  } else {
+    for (const int root : clusters_.roots()) add_root(root);
   }
 
   const auto done = [&] {

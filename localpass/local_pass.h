@@ -55,6 +55,7 @@
 #include "localpass/method.h"
 #include "localpass/occlusion_culling.h"
 #include "localpass/point_light_visibility.h"
+#include "localpass/visible_set.h"
 #include "octree/octree.h"
 #include "scene/scene.h"
 
@@ -92,6 +93,11 @@ struct LocalPassSettings {
   /// every face as an occluder (the naive exact gather, the baseline for measuring the culling;
   /// the same values at tolerance 0).
   bool occlusion_culling = true;
+  /// Visibility culling (localpass/visible_set.h): at each point only the polygons it may see
+  /// take part, as roots of the sum and as blockers (the same terms). Used when the scene has at
+  /// least this many polygons; in a small scene (the Cornell box's 20) its walk cannot pay.
+  /// 0: always.
+  int visible_set_from = 64;
 };
 
 struct LocalPassResult {
@@ -105,6 +111,7 @@ struct LocalPassResult {
   int clusters = 0;          ///< Cluster intervals computed (one Lambert formula each)
   int gathers = 0;           ///< Exact gathers run (0 when nothing can light x)
   int mirrored = 0;          ///< Gathers at unfolded receivers (000 §3): one per chain not culled
+  int visible_polygons = 0;  ///< Polygons x may see (the visibility culling; 0 when it is off)
   /// H(x) refracted through transparent polyhedra (000 §4), by the paper's heuristic: NOT
   /// covered by `bound`, and not in `irradiance`. The total is irradiance + refracted.
   Rgb refracted = Rgb::Zero();
@@ -168,6 +175,9 @@ class LocalPass {
   std::unique_ptr<ExactGatherer> gatherer_;
   OcclusionCulling culling_;
   ClusterTree clusters_;
+  /// The visibility culling (null when off) and each polygon's root cluster (-1: no faces).
+  std::unique_ptr<const VisibleSet> visible_set_;
+  std::vector<int> root_of_polygon_;
   /// One chain of mirrors: its unfolded scene and the local pass over it (000 §3).
   struct Mirror;
   std::vector<std::unique_ptr<Mirror>> mirrors_;

@@ -147,14 +147,25 @@ void OcclusionCulling::occluders(const Vec3& x, const OcclusionSplit::Group& gro
   }
 }
 
+bool OcclusionCulling::is_candidate(int p, const Vec3& x, const Vec3& n) const {
+  const PolygonData& polygon = polygons_[p];
+  if (std::abs(polygon.normal.dot(x) - polygon.offset) <= 0.5 * in_plane_) return false;
+  return std::ranges::any_of(polygon.vertices, [&](const Vec3& v) { return n.dot(v - x) > 0; });
+}
+
 std::vector<int> OcclusionCulling::candidates(const Vec3& x, const Vec3& n) const {
   std::vector<int> candidates;
   for (size_t p = 0; p < polygons_.size(); ++p) {
-    const PolygonData& polygon = polygons_[p];
-    if (std::abs(polygon.normal.dot(x) - polygon.offset) <= 0.5 * in_plane_) continue;
-    if (std::ranges::any_of(polygon.vertices, [&](const Vec3& v) { return n.dot(v - x) > 0; })) {
-      candidates.push_back(static_cast<int>(p));
-    }
+    if (is_candidate(static_cast<int>(p), x, n)) candidates.push_back(static_cast<int>(p));
+  }
+  return candidates;
+}
+
+std::vector<int> OcclusionCulling::candidates(const Vec3& x, const Vec3& n,
+                                              std::span<const int> polygons) const {
+  std::vector<int> candidates;
+  for (const int p : polygons) {
+    if (is_candidate(p, x, n)) candidates.push_back(p);
   }
   return candidates;
 }

@@ -50,6 +50,8 @@ class OcclusionCulling {
   /// gatherers' tolerance, so that every face the gatherers project is kept), part above the
   /// horizon. Polygon indices, ascending.
   std::vector<int> candidates(const Vec3& x, const Vec3& n) const;
+  /// The same among `polygons` (ascending): those x may see (localpass/visible_set.h).
+  std::vector<int> candidates(const Vec3& x, const Vec3& n, std::span<const int> polygons) const;
   /// Polygons among `candidates` (ascending) that may hide part of the convex planar `outline`
   /// of polygon `polygon` (in its box `box`) from x, ascending, plus the polygons coplanar with
   /// it that overlap it (they hide each other by index). Empty: nothing hides any of it.
@@ -79,6 +81,7 @@ class OcclusionCulling {
   void filter(std::span<const int> candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
               const std::vector<Vec3>* face, std::vector<int>* out) const;
   bool can_light(int face, const Vec3& x, const Vec3& n) const;
+  bool is_candidate(int polygon, const Vec3& x, const Vec3& n) const;
 
   const std::vector<EmittingFace>& faces_;
   const Octree& octree_;

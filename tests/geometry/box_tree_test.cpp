@@ -77,6 +77,44 @@ TEST(BoxTree, FindsWhatAPassOverEveryBoxFinds2D) {
   for (uint64_t seed = 1; seed <= 20; ++seed) check_against_brute_force<2>(seed);
 }
 
+TEST(BoxTree, NearestFirstVisitsWhatItEntersOnceAndTheNearestFirst) {
+  // The visibility culling's walk (localpass/visible_set.h): with every node entered, each item
+  // once, the nearest box first; with nodes entered only where they meet a query box, every
+  // item meeting it still (its leaf and the nodes above hold its box), and none twice.
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::vector<Box<3>> boxes;
+    const int n = static_cast<int>(rng() % 300);
+    for (int i = 0; i < n; ++i) boxes.push_back(random_box<3>(rng));
+    const BoxTree<3> tree(boxes);
+    const Box<3> probe = random_box<3>(rng);
+    const Eigen::Vector3d point = probe.center();
+    std::vector<int> all;
+    tree.nearest_first(
+        point, [](const Box<3>&) { return true; }, [&](int item) { all.push_back(item); });
+    std::vector<int> sorted = all;
+    std::ranges::sort(sorted);
+    ASSERT_EQ(sorted.size(), boxes.size());
+    for (int i = 0; i < n; ++i) ASSERT_EQ(sorted[i], i);
+    if (n > 0) {
+      double nearest = boxes[0].squaredExteriorDistance(point);
+      for (const Box<3>& b : boxes) nearest = std::min(nearest, b.squaredExteriorDistance(point));
+      EXPECT_EQ(boxes[all.front()].squaredExteriorDistance(point), nearest);
+    }
+    std::vector<int> met;
+    tree.nearest_first(
+        point, [&](const Box<3>& b) { return b.intersects(probe); },
+        [&](int item) { met.push_back(item); });
+    std::ranges::sort(met);
+    EXPECT_TRUE(std::ranges::adjacent_find(met) == met.end());
+    for (int i = 0; i < n; ++i) {
+      if (boxes[i].intersects(probe)) {
+        EXPECT_TRUE(std::ranges::binary_search(met, i)) << i;
+      }
+    }
+  }
+}
+
 TEST(BoxTree, EmptyTreeFindsNothing) {
   const BoxTree<3> tree;
   EXPECT_FALSE(tree.any(BoxTree<3>::Box(Vec3::Zero(), Vec3::Ones())));
