@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "scene/polygon_faces.h"
 #include "tests/scene_builder.h"
 
 namespace rad::test {
@@ -207,5 +208,15 @@ class RandomSceneMaker {
  private:
   std::mt19937_64 rng_;
 };
+
+/// Every polygon of `scene` radiating a seeded exitance, so that occlusion anywhere shows in a
+/// gathered value (the culling tests' faces).
+inline std::vector<EmittingFace> radiating_faces(const Scene& scene, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.1, 1);
+  std::vector<Rgb> exitance;
+  for (size_t p = 0; p < scene.polygons.size(); ++p) exitance.emplace_back(u(rng), u(rng), u(rng));
+  return faces_from_polygons(scene, exitance);
+}
 
 }  // namespace rad::test

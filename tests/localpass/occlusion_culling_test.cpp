@@ -17,14 +17,7 @@
 namespace rad {
 namespace {
 
-/// Every polygon radiating a seeded exitance, so that occlusion anywhere shows in the value.
-std::vector<EmittingFace> radiating_faces(const Scene& scene, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.1, 1);
-  std::vector<Rgb> exitance;
-  for (size_t p = 0; p < scene.polygons.size(); ++p) exitance.emplace_back(u(rng), u(rng), u(rng));
-  return faces_from_polygons(scene, exitance);
-}
+using test::radiating_faces;
 
 ::testing::AssertionResult same(const Rgb& culled, const Rgb& plain) {
   for (int c = 0; c < 3; ++c) {
