@@ -99,7 +99,8 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   unfolded.mirror_depth = 0;         // an unfolded scene has no mirrors (images never reflect)
   unfolded.refraction_depth = 0;     // refraction is gathered at the real receiver only
   unfolded.glossy_transfer = false;  // nor glossy transfer
-  unfolded.visible_set_from = std::numeric_limits<int>::max();  // unfolded scenes: not measured
+  // Unfolded scenes: the visibility culling is left off (its tests do not cover them).
+  unfolded.visible_set_from = std::numeric_limits<int>::max();
   const int depth = settings.mirror_depth.value_or(scene.mirror_depth);
   for (const std::vector<int>& chain : mirror_chains(pieces, depth, in_plane_)) {
     auto m = std::make_unique<Mirror>();
