@@ -10,9 +10,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,18 +92,18 @@ int main(int argc, char** argv) {
   std::vector<size_t> indices;
   for (int y = stride / 2; y < size; y += stride)
     for (int x = stride / 2; x < size; x += stride) indices.push_back(size_t(y) * size + x);
-  std::vector<Checked> grid(indices.size());
-  std::vector<char> on_surface(indices.size(), 0);
+  std::vector<std::optional<Checked>> found(indices.size());
   tbb::parallel_for(size_t(0), indices.size(), [&](size_t k) {
     const int x = static_cast<int>(indices[k] % size), y = static_cast<int>(indices[k] / size);
     const auto hit = caster.closest_hit(camera.ray(x + 0.5, y + 0.5));
     if (!hit || !hit->front_facing) return;
     const rad::Material& m = scene.materials[scene.polygons[hit->polygon].material];
     const rad::Rgb h = hemisphere.gather(hit->point, hit->normal, 0).irradiance;
-    grid[k] = {indices[k], m.emission + m.reflectance.cwiseProduct(h)};
-    on_surface[k] = 1;
+    found[k] = Checked{indices[k], m.emission + m.reflectance.cwiseProduct(h)};
   });
-  std::erase_if(grid, [&](const Checked& c) { return !on_surface[&c - grid.data()]; });
+  std::vector<Checked> grid;  // the grid's pixels that show a surface
+  for (const std::optional<Checked>& c : found)
+    if (c) grid.push_back(*c);
 
   start = Clock::now();
   const rad::MonteCarloGatherer gatherer(scene, faces);

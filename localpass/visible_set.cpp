@@ -1,7 +1,6 @@
 #include "localpass/visible_set.h"
 
 #include <algorithm>
-#include <array>
 #include <limits>
 
 #include "hemisphere/blocker_surface.h"
@@ -12,8 +11,9 @@ namespace {
 
 /// Whether nothing in `box` can show above x's horizon past what `surface` holds (the proof is
 /// in the header): x outside the box grown by 2 pad, and every face of the box grown by pad that
-/// x is outside of has visible form factor 0, asked with the lowest id (so that it shows in
-/// cells of polygons in its own plane).
+/// x is outside of lies more than pad from x (so that the query never takes it for edge-on,
+/// as it does within the gatherers' in-plane tolerance) and has visible form factor 0, asked
+/// with the lowest id (so that it shows in cells of polygons in its own plane).
 bool hidden(const BlockerSurface& surface, const Eigen::AlignedBox3d& box, const Vec3& x,
             double pad) {
   if (surface.empty()) return false;
@@ -28,17 +28,16 @@ bool hidden(const BlockerSurface& surface, const Eigen::AlignedBox3d& box, const
   for (int a = 0; a < 3; ++a) {
     for (const int side : {-1, 1}) {
       const double at = side < 0 ? lo[a] : hi[a];
-      if (!(side < 0 ? x[a] < at : x[a] > at)) continue;  // x does not see this face
+      const double beyond = side < 0 ? at - x[a] : x[a] - at;  // x's height over the face
+      if (!(beyond > 0)) continue;                             // x does not see this face
+      if (!(beyond > pad)) return false;  // nearly in its plane: not asked, not proven hidden
       const int b = (a + 1) % 3, c = (a + 2) % 3;
-      std::array<Vec3, 4> corners;
+      std::vector<Vec3> face(4);
       for (int k = 0; k < 4; ++k) {
-        Vec3 v;
-        v[a] = at;
-        v[b] = (k == 1 || k == 2) ? hi[b] : lo[b];
-        v[c] = k >= 2 ? hi[c] : lo[c];
-        corners[k] = v;
+        face[k][a] = at;
+        face[k][b] = (k == 1 || k == 2) ? hi[b] : lo[b];
+        face[k][c] = k >= 2 ? hi[c] : lo[c];
       }
-      const std::vector<Vec3> face(corners.begin(), corners.end());
       const Vec3 normal = side * Vec3::Unit(a);
       if (surface.visible_form_factor(std::numeric_limits<int>::min(), face, normal) > 0)
         return false;

@@ -10,7 +10,8 @@
 ///
 /// Why it leaves out nothing that matters (proof). A node is passed over only when x lies
 /// outside its box (grown by twice the pad) and every face of the box (grown by the pad) that x
-/// is outside of has visible form factor 0 against the inserted polygons: each direction above
+/// is outside of lies more than the pad from x (never edge-on to the query) and has visible
+/// form factor 0 against the inserted polygons: each direction above
 /// the horizon that enters it meets an inserted opaque polygon strictly nearer first (the query
 /// counts ties and coplanar cells as visible: the face asks with the lowest id). A ray from x
 /// into the box enters through such a face, so along every direction above the horizon that

@@ -128,12 +128,6 @@ IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, c
       caster, camera, offset, progress, job,
       [&](const Hit& hit, const Rgb& weight, size_t index, IrradianceImage& out) {
         const Material& material = scene.materials[scene.polygons[hit.polygon].material];
-        // A black surface (a sky, a lamp's face) shows its emission alone, exactly: B = E + 0 H
-        // needs no H, and its bound is 0 times H's.
-        if (material.reflectance == Rgb::Zero() && !material.is_glossy()) {
-          out.radiosity.pixels[index] += weight.cwiseProduct(material.emission);
-          return;
-        }
         const LocalPassResult r = pass.gather(hit.point, hit.normal, tolerance);
         out.radiosity.pixels[index] +=
             weight.cwiseProduct(material.emission + material.reflectance.cwiseProduct(

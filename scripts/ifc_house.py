@@ -19,6 +19,7 @@ import math
 import os
 import re
 import sys
+import unicodedata
 
 
 def read_mtl(path):
@@ -68,7 +69,8 @@ def area(a, b, c):
 
 
 def slug(name, used):
-    base = re.sub(r"[^a-z0-9]+", "-", name.lower().encode("ascii", "ignore").decode()).strip("-")
+    ascii = unicodedata.normalize("NFKD", name).encode("ascii", "ignore").decode()  # ä: a
+    base = re.sub(r"[^a-z0-9]+", "-", ascii.lower()).strip("-")
     base = base or "material"
     out, k = base, 2
     while out in used:
