@@ -1,6 +1,7 @@
 #include "radiosity/patch_mesh.h"
 
 #include <Eigen/Cholesky>
+#include <OpenMesh/Core/System/omstream.hh>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -14,6 +15,8 @@ namespace {
 
 /// Unique points of one polygon's elements, bucketed in a hash grid.
 class PointSet {
+  using Cell = Eigen::Matrix<int64_t, 3, 1>;
+
  public:
   PointSet(double cell, double tolerance) : cell_(cell), tolerance_(tolerance) {}
 
@@ -27,23 +30,31 @@ class PointSet {
 
   /// Points strictly inside segment (a, b) (within tolerance of it), sorted from a to b.
   std::vector<int> on_segment(const Vec3& a, const Vec3& b) const {
-    const Eigen::Vector3i lo = cell_of(a.cwiseMin(b) - Vec3::Constant(tolerance_));
-    const Eigen::Vector3i hi = cell_of(a.cwiseMax(b) + Vec3::Constant(tolerance_));
+    const Cell lo = cell_of(a.cwiseMin(b) - Vec3::Constant(tolerance_));
+    const Cell hi = cell_of(a.cwiseMax(b) + Vec3::Constant(tolerance_));
     const Vec3 ab = b - a;
     const double length2 = ab.squaredNorm();
     std::vector<std::pair<double, int>> found;
-    for (int i = lo.x(); i <= hi.x(); ++i) {
-      for (int j = lo.y(); j <= hi.y(); ++j) {
-        for (int k = lo.z(); k <= hi.z(); ++k) {
-          const auto it = cells_.find(key({i, j, k}));
-          if (it == cells_.end()) continue;
-          for (const int q : it->second) {
-            const double t = (points_[q] - a).dot(ab) / length2;
-            if (t <= 0 || t >= 1) continue;
-            if ((a + t * ab - points_[q]).norm() > tolerance_) continue;
-            if ((points_[q] - a).norm() <= tolerance_ || (points_[q] - b).norm() <= tolerance_)
-              continue;
-            found.emplace_back(t, q);
+    const auto consider = [&](int q) {
+      const double t = (points_[q] - a).dot(ab) / length2;
+      if (t <= 0 || t >= 1) return;
+      if ((a + t * ab - points_[q]).norm() > tolerance_) return;
+      if ((points_[q] - a).norm() <= tolerance_ || (points_[q] - b).norm() <= tolerance_) return;
+      found.emplace_back(t, q);
+    };
+    // The cell is sized by the polygon's shortest element edge, so a long edge of a polygon
+    // that also has a tiny one spans up to (length / cell)^3 cells, more than there are
+    // points (a 100 m wall with a 0.1 mm sliver: 10^18). Then the points are scanned instead.
+    const Eigen::Vector3d span = (hi - lo).cast<double>() + Vec3::Ones();
+    if (span.x() * span.y() * span.z() > static_cast<double>(points_.size())) {
+      for (int q = 0; q < size(); ++q) consider(q);
+    } else {
+      for (int64_t i = lo.x(); i <= hi.x(); ++i) {
+        for (int64_t j = lo.y(); j <= hi.y(); ++j) {
+          for (int64_t k = lo.z(); k <= hi.z(); ++k) {
+            const auto it = cells_.find(key({i, j, k}));
+            if (it == cells_.end()) continue;
+            for (const int q : it->second) consider(q);
           }
         }
       }
@@ -58,22 +69,23 @@ class PointSet {
   int size() const { return static_cast<int>(points_.size()); }
 
  private:
-  Eigen::Vector3i cell_of(const Vec3& p) const {
-    return {static_cast<int>(std::floor(p.x() / cell_)),
-            static_cast<int>(std::floor(p.y() / cell_)),
-            static_cast<int>(std::floor(p.z() / cell_))};
+  // 64-bit cells: a tiny cell far from the origin overflows an int.
+  Cell cell_of(const Vec3& p) const {
+    return {static_cast<int64_t>(std::floor(p.x() / cell_)),
+            static_cast<int64_t>(std::floor(p.y() / cell_)),
+            static_cast<int64_t>(std::floor(p.z() / cell_))};
   }
-  static uint64_t key(const Eigen::Vector3i& c) {
+  static uint64_t key(const Cell& c) {
     return (static_cast<uint64_t>(c.x() & 0x1FFFFF) << 42) |
            (static_cast<uint64_t>(c.y() & 0x1FFFFF) << 21) |
            static_cast<uint64_t>(c.z() & 0x1FFFFF);
   }
   int find(const Vec3& p) const {
-    const Eigen::Vector3i c = cell_of(p);
-    for (int i = -1; i <= 1; ++i) {
-      for (int j = -1; j <= 1; ++j) {
-        for (int k = -1; k <= 1; ++k) {
-          const auto it = cells_.find(key(c + Eigen::Vector3i(i, j, k)));
+    const Cell c = cell_of(p);
+    for (int64_t i = -1; i <= 1; ++i) {
+      for (int64_t j = -1; j <= 1; ++j) {
+        for (int64_t k = -1; k <= 1; ++k) {
+          const auto it = cells_.find(key(c + Cell(i, j, k)));
           if (it == cells_.end()) continue;
           for (const int q : it->second) {
             if ((points_[q] - p).norm() <= tolerance_) return q;
@@ -130,11 +142,27 @@ ElementMesh::ElementMesh(const Solution& solution, double tolerance) {
       face_handles[faces[k]] = std::move(face);
     }
   }
-  // Add faces in leaf order so face f is leaf f.
+  // Add faces in leaf order so face f is leaf f. OpenMesh refuses a face that would make the
+  // mesh non-manifold (an edge already between two faces, as where an imported model's three
+  // triangles meet on one edge), and asserts on a face that repeats a vertex (corners merged
+  // at the tolerance: a sliver). Such a face gets vertices of its own instead: a seam in the
+  // display, but face f stays leaf f. OpenMesh's complaint on stderr is silenced meanwhile:
+  // it is handled here, not the user's to read.
+  const auto repeats_a_vertex = [](std::vector<OpenMesh::VertexHandle> face) {
+    std::sort(face.begin(), face.end());
+    return std::adjacent_find(face.begin(), face.end()) != face.end();
+  };
+  const bool complaints = omerr().is_enabled();
+  omerr().disable();
   for (size_t f = 0; f < leaves.size(); ++f) {
-    mesh_.add_face(face_handles[f]);
+    if (repeats_a_vertex(face_handles[f]) || !mesh_.add_face(face_handles[f]).is_valid()) {
+      std::vector<OpenMesh::VertexHandle> own;
+      for (const auto v : face_handles[f]) own.push_back(mesh_.add_vertex(mesh_.point(v)));
+      mesh_.add_face(own);
+    }
     face_element_.push_back(leaves[f]);
   }
+  if (complaints) omerr().enable();
 }
 
 std::vector<int> ElementMesh::face_vertices(int face) const {

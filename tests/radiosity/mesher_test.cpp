@@ -87,6 +87,49 @@ Solution uneven_solution() {
   return s;
 }
 
+/// A solution of hand-made leaf elements on polygon 0 (no patches: the mesh needs none).
+Solution elements_only(const std::vector<std::vector<Vec3>>& faces) {
+  Solution s;
+  for (const auto& corners : faces) {
+    Element e;
+    e.polygon = 0;
+    e.corners = corners;
+    s.elements.push_back(e);
+  }
+  return s;
+}
+
+TEST(ElementMesh, KeepsFaceFAsLeafFWhereTheElementsAreNotAManifold) {
+  // Three triangles on one edge (as where an imported model's wall meets two others), and a
+  // triangle whose corners merge at the tolerance: OpenMesh refuses the third and the fourth.
+  const Solution s = elements_only({{{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}},
+                                    {{1, 0, 0}, {0, 0, 0}, {0.5, -1, 0}},
+                                    {{0, 0, 0}, {1, 0, 0}, {0.5, 0, 1}},
+                                    {{2, 0, 0}, {2 + 1e-12, 0, 0}, {2, 1, 0}},
+                                    {{3, 0, 0}, {4, 0, 0}, {3, 1, 0}}});
+  const ElementMesh mesh(s, 1e-9);
+  ASSERT_EQ(mesh.face_count(), 5);
+  ASSERT_EQ(mesh.mesh().n_faces(), 5u);
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    EXPECT_EQ(mesh.element(f), f);
+    const std::vector<Vec3> points = mesh.face_points(f);
+    ASSERT_EQ(points.size(), 3u) << "face " << f;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_LE((points[i] - s.elements[f].corners[i]).norm(), 1e-9) << "face " << f;
+  }
+}
+
+TEST(ElementMesh, BuildsAPolygonWithAHugeAndATinyEdgeInTime) {
+  // The point hash's cell is the polygon's shortest element edge; a 1 km edge next to a
+  // 0.1 mm one once made the T-vertex search visit (10^7)^2 cells (a hang: ctest's timeout).
+  const Solution s = elements_only({{{0, 0, 0}, {1000, 0, 0}, {0, 1000, 0}},
+                                    {{0, 1000, 0}, {1000, 0, 0}, {1000, 1e-4, 0}},
+                                    {{0, 1000, 0}, {1000, 1e-4, 0}, {1000, 1000, 0}}});
+  const ElementMesh mesh(s, 1e-9);
+  ASSERT_EQ(mesh.face_count(), 3);
+  for (int f = 0; f < 3; ++f) EXPECT_EQ(mesh.face_points(f).size(), 3u) << "face " << f;
+}
+
 TEST(ElementMesh, IsConformingAcrossTJunctions) {
   const Solution s = uneven_solution();
   const ElementMesh mesh(s, 1e-9);
