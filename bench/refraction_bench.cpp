@@ -1,7 +1,7 @@
 // The refraction heuristic of paper 000 §4 against the path tracer (issue 19): on the scenes of
-// data/refraction/ (a glass block, a dispersive prism, a flat and a rippled pool, each under the
-// lamp of a black room, so that only the lamp's light reaches the floor points), Fresnel off
-// and on, the local pass (vertex tracing of the polygons' emission, tolerance 0) at several
+// data/refraction/ (a glass block, a dispersive prism, a wide pane, a flat and a rippled pool, each
+// under the lamp of a black room, so that only the lamp's light reaches the floor points), Fresnel
+// off and on, the local pass (vertex tracing of the polygons' emission, tolerance 0) at several
 // settings of the accuracy knob (--refraction-tolerance) against two converged references:
 //  - the heuristic's model: the path tracer dropping what interfaces reflect, at the same depth
 //    (2 crossings): the knob's error, which should fall as it tightens;
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   cost_chart.y_label = knob_chart.y_label;
   cost_chart.log_x = cost_chart.log_y = true;
   std::printf("References: %d paths a point (the path tracer of the scene itself).\n", paths);
-  for (const std::string name : {"block", "prism", "water-flat", "water-rippled"}) {
+  for (const std::string name : {"block", "prism", "pane", "water-flat", "water-rippled"}) {
     for (const bool fresnel : {false, true}) {
       rad::Scene scene = rad::load_scene(data + name + ".json");
       for (rad::Material& m : scene.materials) {

@@ -149,12 +149,13 @@ void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& h
 void add_refraction_options(CLI::App* sub, LocalPassSettings* settings) {
   sub->add_option_function<double>(
          "--refraction-tolerance", [settings](double t) { settings->refraction_tolerance = t; },
-         "Refracting materials: split each facet until the apparent-depth ratio varies by at most "
-         "this much over each piece (relative); default: one angle per facet, paper 000 section "
-         "4's heuristic")
+         "Refracting materials: split the first facet of each chain until the apparent-depth "
+         "ratio at every facet, along the rays through each piece refracted on by Snell's law, "
+         "varies by at most this much (relative); default: one angle per facet on the centroid "
+         "path, paper 000 section 4's heuristic")
       ->check(CLI::Range(1e-6, 1e6));
   sub->add_option("--refraction-pieces", settings->refraction_max_pieces,
-                  "Refracting materials: at most this many pieces per facet")
+                  "Refracting materials: at most this many pieces of a chain's first facet")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
 }

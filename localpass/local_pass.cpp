@@ -127,6 +127,15 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   }
 }
 
+void LocalPass::gather_refracted(const Refracting& r, const RefractionPath& path, const Vec3& x,
+                                 const Vec3& n, LocalPassResult& result) const {
+  for (const RefractedImage& image : refracted_images(r.scene, faces_, path, x, in_plane_)) {
+    const auto gatherer = make_exact_gatherer(r.method, image.unfolded.scene, image.unfolded.faces);
+    result.refracted += image.weight.cwiseProduct(exact_irradiance(*gatherer, x, n));
+    ++result.refracted_images;
+  }
+}
+
 void LocalPass::add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& result) const {
   const Refracting& r = *refracting_;
   for (const RefractionChain& chain : r.chains) {
@@ -141,33 +150,31 @@ void LocalPass::add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& res
         inside = inside && r.facets[f].height(x) <= in_plane_;
       if (!inside) continue;
     }
-    // Each facet in pieces (the accuracy knob), seen from where the path reaches it; a path
-    // through pieces whose images miss each other is skipped (the beams).
     const int k = static_cast<int>(chain.facets.size());
-    std::vector<std::vector<RefractingFacet>> pieces(k);
-    RefractionPath path{{}, chain.from_inside};
-    const auto extend = [&](const auto& self, int j, const Vec3& viewpoint, bool entering) -> void {
-      pieces[j] =
-          facet_pieces(r.facets[chain.facets[j]], viewpoint, entering, r.tolerance, r.max_pieces);
-      for (const RefractingFacet& piece : pieces[j]) {
-        path.facets.push_back(&piece);
-        if (!r.culling || may_pass(path, x)) {
-          if (j + 1 < k) {
-            self(self, j + 1, piece.centroid, !entering);
-          } else {
-            for (const RefractedImage& image :
-                 refracted_images(r.scene, faces_, path, x, in_plane_)) {
-              const auto gatherer =
-                  make_exact_gatherer(r.method, image.unfolded.scene, image.unfolded.faces);
-              result.refracted += image.weight.cwiseProduct(exact_irradiance(*gatherer, x, n));
-              ++result.refracted_images;
-            }
-          }
-        }
-        path.facets.pop_back();
+    if (std::isfinite(r.tolerance)) {
+      // The accuracy knob: the first facet in pieces, each the start of a traced path through
+      // the chain's other facets, whole (RefractionPath::traced).
+      RefractionPath path{{nullptr}, chain.from_inside, true};
+      for (int j = 1; j < k; ++j) path.facets.push_back(&r.facets[chain.facets[j]]);
+      const std::vector<const RefractingFacet*> beyond(path.facets.begin() + 1, path.facets.end());
+      for (const RefractingFacet& piece :
+           facet_pieces(r.facets[chain.facets.front()], x, !chain.from_inside, r.tolerance,
+                        r.max_pieces, beyond)) {
+        path.facets.front() = &piece;
+        if (r.culling && !may_pass(path, x)) continue;
+        gather_refracted(r, path, x, n, result);
       }
-    };
-    extend(extend, 0, x, !chain.from_inside);
+      continue;
+    }
+    // The paper's method: each facet whole, on the centroid path; a path whose images miss
+    // each other is skipped (the beams, checked as the path grows).
+    RefractionPath path{{}, chain.from_inside};
+    bool passes = true;
+    for (int j = 0; j < k && passes; ++j) {
+      path.facets.push_back(&r.facets[chain.facets[j]]);
+      passes = !r.culling || may_pass(path, x);
+    }
+    if (passes) gather_refracted(r, path, x, n, result);
   }
 }
 

@@ -61,6 +61,8 @@
 
 namespace rad {
 
+struct RefractionPath;
+
 struct LocalPassSettings {
   OctreeSettings octree;
   /// Longest chain of plane-mirror reflections gathered (000 §3): 0 ignores mirrors (their
@@ -73,11 +75,13 @@ struct LocalPassSettings {
   /// interfaces are opaque), 2 sees through a convex block. Unset: the scene's
   /// (Scene::refraction_depth).
   std::optional<int> refraction_depth;
-  /// The refraction heuristic's accuracy knob (localpass/refraction_images.h, facet_pieces):
-  /// facets are split until the depth ratio varies by at most this much over each piece, as
-  /// seen from where the path reaches it. Infinite: one angle per facet, the paper's method.
+  /// The refraction heuristic's accuracy knob (localpass/refraction_images.h, facet_pieces and
+  /// RefractionPath::traced): a chain's first facet is split until, along the rays from x
+  /// through each piece refracted on through the chain's other facets, the depth ratio at every
+  /// facet varies by at most this much; each piece's angles are those of its centroid's ray.
+  /// Infinite: one angle per facet on the centroid path, the paper's method.
   double refraction_tolerance = std::numeric_limits<double>::infinity();
-  /// At most this many pieces per facet and viewpoint.
+  /// At most this many pieces of a chain's first facet.
   int refraction_max_pieces = 64;
   /// Skip paths whose later facets' images lie outside the earlier ones' (000 §5's beams); false:
   /// every path (the same values).
@@ -187,6 +191,9 @@ class LocalPass {
   struct Refracting;
   std::unique_ptr<const Refracting> refracting_;
   void add_refracted(const Vec3& x, const Vec3& n, LocalPassResult& result) const;
+  /// Gathers the images of one path at x into result.refracted.
+  void gather_refracted(const Refracting& r, const RefractionPath& path, const Vec3& x,
+                        const Vec3& n, LocalPassResult& result) const;
   /// Glossy transfer (003). Null without glossy surfaces lit by something.
   std::unique_ptr<const GlossyTransfer> glossy_;
   /// Point lights, decided exactly (localpass/point_light_visibility.h). Null without any.

@@ -124,46 +124,92 @@ std::vector<RefractionChain> refraction_chains(const std::vector<RefractingFacet
 
 namespace {
 
-/// Along the centroid path x -> c_1 -> ... -> c_k: the depth ratio at each facet per channel
+/// Along the centroid path x -> c_1 -> ... -> c_k (or, for a traced path, along the ray x ->
+/// c_1 refracted on by Snell's law in each channel): the depth ratio at each facet per channel
 /// (eqs. 7-8; 0 past the critical angle), and the weight of the path per channel.
 struct PathOptics {
   std::vector<std::array<double, 3>> ratio;
   Rgb weight = Rgb::Ones();
-  bool seen = true;  ///< false when a facet is seen edge-on
+  bool seen = true;  ///< false when the first facet is seen edge-on
 };
+
+/// One channel of a path's optics: where its line reaches each facet, the depth ratio there
+/// (nothing past the critical angle, edge-on, or where a traced ray meets a facet's plane
+/// behind it), and the weight of the crossings; stops at the first facet that passes nothing.
+struct ChannelOptics {
+  std::vector<double> ratio;  ///< per facet; 0 from the first one that passes nothing on
+  double weight = 1;
+  double optical_depth = 0;  ///< attenuation x length inside the media
+};
+
+/// `through`: the point of the first facet the line from x goes through (its centroid, but for
+/// the knob's samples).
+ChannelOptics channel_optics(const RefractionPath& path, const Vec3& x, int c,
+                             const Vec3& through) {
+  const int k = static_cast<int>(path.facets.size());
+  ChannelOptics o;
+  o.ratio.assign(k, 0);
+  Vec3 from = x;
+  Vec3 direction = Vec3::Zero();
+  bool inside = path.from_inside;
+  for (int j = 0; j < k; ++j) {
+    const RefractingFacet& f = *path.facets[j];
+    // Where the line meets the facet: its centroid on the centroid path (and on the first
+    // facet of a traced one), else where the refracted ray meets its plane.
+    Vec3 at = j == 0 ? through : f.centroid;
+    if (path.traced && j > 0) {
+      const double along = direction.dot(f.normal);
+      const double t = std::abs(along) > 1e-12 ? (f.offset - f.normal.dot(from)) / along : -1;
+      if (!(t > 0)) {  // the ray runs along the facet's plane or away from it
+        o.weight = 0;
+        return o;
+      }
+      at = from + t * direction;
+    }
+    const Vec3 leg = at - from;
+    const double length = leg.norm();
+    const double cos_near = length > 0 ? std::abs(leg.dot(f.normal)) / length : 0;
+    if (!(cos_near > 1e-12)) {  // edge-on: the facet shows nothing
+      o.weight = 0;
+      return o;
+    }
+    const Refraction& r = f.refraction;
+    if (inside) o.optical_depth += length * r.attenuation[c];
+    const double eta = inside ? 1 / r.ior[c] : r.ior[c];
+    const std::optional<double> ratio = depth_ratio(cos_near, eta);
+    if (!ratio) {  // total internal reflection in this channel
+      o.weight = 0;
+      return o;
+    }
+    o.ratio[j] = *ratio;
+    const double passed = r.fresnel ? fresnel_transmission(cos_near, eta) : r.transmittance[c];
+    o.weight *= passed / (eta * eta);
+    if (path.traced) direction = refract(leg / length, f.normal, eta).value_or(Vec3::Zero());
+    inside = !inside;
+    from = at;
+  }
+  return o;
+}
 
 PathOptics optics_of(const RefractionPath& path, const Vec3& x) {
   PathOptics o;
   const int k = static_cast<int>(path.facets.size());
   o.ratio.resize(k);
+  // The first facet seen edge-on shows nothing in any channel.
+  const Vec3 first = path.facets.front()->centroid - x;
+  const double first_length = first.norm();
+  if (!(first_length > 0 &&
+        std::abs(first.dot(path.facets.front()->normal)) / first_length > 1e-12)) {
+    o.seen = false;
+    o.weight = Rgb::Zero();
+    return o;
+  }
   Rgb optical_depth = Rgb::Zero();
-  Vec3 from = x;
-  bool inside = path.from_inside;
-  for (int j = 0; j < k; ++j) {
-    const RefractingFacet& f = *path.facets[j];
-    const Vec3 leg = f.centroid - from;
-    const double length = leg.norm();
-    const double cos_near = length > 0 ? std::abs(leg.dot(f.normal)) / length : 0;
-    if (!(cos_near > 1e-12)) {  // edge-on: the facet shows nothing
-      o.seen = false;
-      o.weight = Rgb::Zero();
-      return o;
-    }
-    const Refraction& r = f.refraction;
-    if (inside) optical_depth += length * r.attenuation;
-    for (int c = 0; c < 3; ++c) {
-      const double eta = inside ? 1 / r.ior[c] : r.ior[c];
-      const std::optional<double> ratio = depth_ratio(cos_near, eta);
-      o.ratio[j][c] = ratio.value_or(0);
-      if (!ratio) {
-        o.weight[c] = 0;  // total internal reflection in this channel
-        continue;
-      }
-      const double passed = r.fresnel ? fresnel_transmission(cos_near, eta) : r.transmittance[c];
-      o.weight[c] *= passed / (eta * eta);
-    }
-    inside = !inside;
-    from = f.centroid;
+  for (int c = 0; c < 3; ++c) {
+    const ChannelOptics channel = channel_optics(path, x, c, path.facets.front()->centroid);
+    for (int j = 0; j < k; ++j) o.ratio[j][c] = channel.ratio[j];
+    o.weight[c] = channel.weight;
+    optical_depth[c] = channel.optical_depth;
   }
   o.weight = o.weight.cwiseProduct(Rgb((-optical_depth).array().exp()));
   return o;
@@ -266,9 +312,10 @@ bool may_pass(const RefractionPath& path, const Vec3& x) {
 }
 
 std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Vec3& viewpoint,
-                                          bool entering, double tolerance, int max_pieces) {
+                                          bool entering, double tolerance, int max_pieces,
+                                          const std::vector<const RefractingFacet*>& beyond) {
   // The spread of the depth ratio over a piece, seen from the viewpoint, in its worst channel.
-  const auto spread = [&](const RefractingFacet& piece) {
+  const auto own_spread = [&](const RefractingFacet& piece) {
     const auto ratio = [&](const Vec3& p, int c) {
       const Vec3 leg = p - viewpoint;
       const double length = leg.norm();
@@ -292,6 +339,32 @@ std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Ve
       }
     }
     return worst;
+  };
+  // With facets beyond, the spread of the depth ratio at each facet of the chain along the
+  // rays from the viewpoint through the piece, refracted on (the traced path), in the worst
+  // facet and channel: infinite where some ray passes and the centroid's does not, or the
+  // reverse.
+  RefractionPath chain{{&facet}, !entering, true};
+  chain.facets.insert(chain.facets.end(), beyond.begin(), beyond.end());
+  const auto chain_spread = [&](const RefractingFacet& piece) {
+    std::vector<Vec3> samples = piece.outline;
+    samples.push_back(nearest_point(piece, viewpoint));
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const ChannelOptics middle = channel_optics(chain, viewpoint, c, piece.centroid);
+      for (const Vec3& v : samples) {
+        const ChannelOptics corner = channel_optics(chain, viewpoint, c, v);
+        if (!(middle.weight > 0) && !(corner.weight > 0)) continue;
+        if (!(middle.weight > 0) || !(corner.weight > 0))
+          return std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < middle.ratio.size(); ++j)
+          worst = std::max(worst, std::abs(corner.ratio[j] - middle.ratio[j]) / middle.ratio[j]);
+      }
+    }
+    return worst;
+  };
+  const auto spread = [&](const RefractingFacet& piece) {
+    return beyond.empty() ? own_spread(piece) : chain_spread(piece);
   };
   // The widest spread first; among equal spreads (those across the critical angle are all
   // infinite) the largest piece, so that the budget goes around the whole critical curve

@@ -14,7 +14,8 @@
 ///
 /// Choices where the paper is silent:
 ///  - the angle at f_j (j >= 2) is taken on the centroid path, from c_(j-1) to c_j: the path the
-///    attenuation is measured along, independent of where x is;
+///    attenuation is measured along, independent of where x is (the accuracy knob traces the
+///    ray from x instead: RefractionPath::traced);
 ///  - the weight of a chain in channel c is the product over its crossings of what each passes
 ///    (the transmittance, or the Fresnel transmission at the centroid angle) and of 1 / eta^2
 ///    (radiance over n^2 is what a crossing keeps: the path tracer shows it is needed, tests/
@@ -79,6 +80,14 @@ struct RefractedImage {
 struct RefractionPath {
   std::vector<const RefractingFacet*> facets;
   bool from_inside = false;
+  /// Beyond the paper (the accuracy knob's paths): the angle at each facet after the first is
+  /// that of the ray from x through the first facet's centroid, refracted by Snell's law at each
+  /// facet before it in each channel, and the attenuation is measured along that ray, instead
+  /// of along the centroid path c_(j-1) -> c_j. Where the facets are far larger than the beam
+  /// of light x receives through them (a window pane, a slab), the centroid path runs where
+  /// no light goes; along the ray, a slab's two contractions undo each other's angle exactly
+  /// (k_1 k_2 = 1) and leave the ray's lateral offset, so splitting the first facet converges.
+  bool traced = false;
 };
 
 /// The images of `path` at x (000 eqs. 7-9 at the centroid angles): one for all channels, or
@@ -101,13 +110,19 @@ std::vector<RefractedImage> refracted_images(const Scene& scene,
 bool may_pass(const RefractionPath& path, const Vec3& x);
 
 /// Beyond the paper, the accuracy knob: the heuristic takes one angle per facet, which is
-/// right where the depth ratio k hardly varies over the facet as seen from `viewpoint` (x, or
-/// the previous facet's centroid). Splits `facet` in two (through its centroid, across its
-/// longest extent), widest spread first, until over each piece max |k(v) - k(c)| / k(c) <=
-/// `tolerance` at its vertices v in every channel (a piece partly past the critical angle
-/// counts as infinitely spread) or there are `max_pieces`. Each piece keeps the facet's plane,
-/// material and object. An infinite tolerance keeps the facet whole (the paper's method).
+/// right where the depth ratio k hardly varies over the facet as seen from `viewpoint`. Splits
+/// `facet` in two (through its centroid, across its longest extent), widest spread first, until
+/// over each piece max |k(v) - k(c)| / k(c) <= `tolerance` at its vertices v in every channel (a
+/// piece partly past the critical angle counts as infinitely spread) or there are `max_pieces`.
+/// Each piece keeps the facet's plane, material and object. An infinite tolerance keeps the facet
+/// whole (the paper's method).
+///
+/// With `beyond` (the facets of the chain after this one), the spread is that of the ratios
+/// at every facet of the chain along the traced rays (RefractionPath::traced) from the
+/// viewpoint through the piece's corners, against the ray through its centroid: the knob then
+/// splits only the first facet of a chain and converges on the traced path.
 std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Vec3& viewpoint,
-                                          bool entering, double tolerance, int max_pieces);
+                                          bool entering, double tolerance, int max_pieces,
+                                          const std::vector<const RefractingFacet*>& beyond = {});
 
 }  // namespace rad

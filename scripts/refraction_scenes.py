@@ -119,6 +119,8 @@ write("block", {"ior": 1.5}, box([198, 0, 200], [358, 160, 360]), 280,
       "a glass block on the floor under the lamp")
 write("prism", {"ior": [1.56, 1.6, 1.68]}, prism([(218, 220), (338, 220), (278, 324)], 120), 262,
       "a dispersive prism")
+write("pane", {"ior": 1.5}, box([1, 250, 1], [555, 270, 558]), 280,
+      "a wide glass pane, 20 thick, across the room between the lamp and the floor (issue 37)")
 write("water-flat", {"ior": 1.33}, pool(100, 456, 100, 460, 100, 0, 1), 280, "a flat pool")
 write("water-rippled", {"ior": 1.33}, pool(100, 456, 100, 460, 100, 8, 6), 280,
       "a rippled pool (000 Fig. 6)")

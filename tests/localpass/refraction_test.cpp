@@ -240,6 +240,81 @@ TEST(RefractionKnob, PiecesTileTheFacetAndMeetTheTolerance) {
   EXPECT_GT(split, 4) << "the tight tolerance must split";
 }
 
+/// Glass of index 1.5 between z = 1 and 1.5, the lamp of lamp_over_box at z = 3: the
+/// irradiance at floor point (x0, y0) by quadrature of the slab's exact optics. A ray leaving
+/// the floor at angle theta keeps it above the slab (parallel faces) and is offset sideways
+/// inside, reaching the lamp's plane at r(theta) = 1 tan(theta) + 0.5 tan(theta_2) + 1.5
+/// tan(theta), sin(theta_2) = sin(theta) / 1.5; the radiance factors of the two crossings
+/// cancel, so H = (1 / pi) integral over the lamp of cos(theta) sin(theta) / (r r'(theta)) dA
+/// (the solid angle dw = sin(theta) dtheta dphi against dA = r dr dphi), by composite
+/// Gauss-Legendre, theta found from r by bisection. No apparent depths: independent of
+/// localpass/refraction_images.h.
+double slab_quadrature(double x0, double y0) {
+  const auto reach = [](double theta) {
+    const double inside = std::asin(std::sin(theta) / 1.5);
+    return 2.5 * std::tan(theta) + 0.5 * std::tan(inside);
+  };
+  const auto reach_slope = [](double theta) {
+    const double s = std::sin(theta) / 1.5;
+    const double c = std::cos(theta);
+    return 2.5 / (c * c) + 0.5 * (c / 1.5) / std::pow(1 - s * s, 1.5);
+  };
+  const double nodes[5] = {-0.9061798459386640, -0.5384693101056831, 0, 0.5384693101056831,
+                           0.9061798459386640};
+  const double weights[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                             0.4786286704993665, 0.2369268850561891};
+  const int cells = 48;
+  double sum = 0;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j)
+      for (int a = 0; a < 5; ++a)
+        for (int b = 0; b < 5; ++b) {
+          const double u = (i + 0.5 + 0.5 * nodes[a]) / cells;
+          const double v = (j + 0.5 + 0.5 * nodes[b]) / cells;
+          const double r = std::hypot(u - x0, v - y0);
+          double lo = 0, hi = M_PI / 2;
+          for (int step = 0; step < 100; ++step) {
+            const double mid = 0.5 * (lo + hi);
+            (reach(mid) < r ? lo : hi) = mid;
+          }
+          const double theta = 0.5 * (lo + hi);
+          const double w = weights[a] * weights[b] / (4.0 * cells * cells);
+          sum += w * std::cos(theta) * std::sin(theta) / (r * reach_slope(theta));
+        }
+  return sum / M_PI;
+}
+
+TEST(RefractionKnob, ConvergesThroughASlabsTwoFacesToItsQuadrature) {
+  // A wide pane (40 x 40, index 1.5, clear, no Fresnel) between the lamp and the floor: light
+  // goes in at the bottom face and out at the top. The paper's centroid path runs from the
+  // bottom's centroid to the top's, where no light goes: 20-30% off away from the lamp's foot.
+  // Along the traced ray the two contractions undo each other's angle, and splitting the
+  // bottom face converges on the quadrature.
+  SceneBuilder b;
+  b.rectangle(0, 1, 0, 1, 3, true, b.material("lamp", Rgb::Zero(), Rgb::Ones()));
+  b.box({-19.5, -19.5, 1}, {20.5, 20.5, 1.5}, b.material("glass", Refraction{Rgb::Constant(1.5)}));
+  b.scene().refraction_depth = 2;
+  const Scene& scene = b.scene();
+  const LocalPass paper(scene, faces_from_polygons(scene), Method::vertex);
+  LocalPassSettings settings;
+  settings.refraction_max_pieces = 4096;
+  settings.refraction_tolerance = 0.1;
+  const LocalPass coarse(scene, faces_from_polygons(scene), Method::vertex, settings);
+  settings.refraction_tolerance = 0.02;
+  const LocalPass fine(scene, faces_from_polygons(scene), Method::vertex, settings);
+  for (const Vec3& x : {Vec3(1.5, 0.5, 0), Vec3(3.5, 1.5, 0)}) {
+    const double reference = slab_quadrature(x.x(), x.y());
+    const auto error = [&](const LocalPass& pass) {
+      const LocalPassResult r = pass.gather(x, kUp, 0);
+      EXPECT_EQ(r.irradiance, Rgb::Zero()) << "the slab hides the lamp from straight lines";
+      return std::abs(r.refracted[0] - reference) / reference;
+    };
+    EXPECT_GT(error(paper), 0.15) << "the paper's method at " << x.transpose();
+    EXPECT_LT(error(coarse), 0.01) << "tolerance 0.1 at " << x.transpose();
+    EXPECT_LT(error(fine), 0.004) << "tolerance 0.02 at " << x.transpose();
+  }
+}
+
 TEST(RefractionKnob, CullingChangesNothing) {
   // A path whose later pieces' images lie outside the earlier ones' passes no line from x
   // (may_pass): skipping it changes nothing.
