@@ -105,7 +105,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
   for (const std::vector<int>& chain : mirror_chains(pieces, depth, in_plane_)) {
     auto m = std::make_unique<Mirror>();
     m->first = pieces[chain.front()];
-    m->sources = sources_in_front(faces_, pieces, m->first, in_plane_);
+    m->sources = sources_in_front(faces_, pieces, scene.lights, m->first, in_plane_);
     m->unfolded = unfold(scene, faces_, pieces, chain, in_plane_);
     m->pass = std::make_unique<LocalPass>(m->unfolded.scene, m->unfolded.faces, method, unfolded);
     mirrors_.push_back(std::move(m));

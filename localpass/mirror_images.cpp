@@ -50,9 +50,13 @@ UnfoldedScene unfold(const Scene& scene, const std::vector<EmittingFace>& faces,
 
 Eigen::AlignedBox3d sources_in_front(const std::vector<EmittingFace>& faces,
                                      const std::vector<MirrorPiece>& pieces,
+                                     const std::vector<PointLight>& lights,
                                      const MirrorPiece& mirror, double in_plane) {
   Eigen::AlignedBox3d box;
   const std::vector<HalfSpace> front{front_of(mirror)};
+  for (const PointLight& light : lights) {
+    if (front.front().height(light.position) > in_plane) box.extend(light.position);
+  }
   for (const EmittingFace& f : faces) {
     if (f.exitance == Rgb::Zero()) continue;
     if (const auto clipped = clipped_to(f, front, in_plane)) {

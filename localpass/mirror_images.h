@@ -41,9 +41,11 @@ UnfoldedScene unfold(const Scene& scene, const std::vector<EmittingFace>& faces,
                      double in_plane);
 
 /// The box of what can send light to x' through `mirror`'s outline: the faces in front of it
-/// that radiate, and the mirror pieces there (reflected light); empty when there is none.
+/// that radiate, the point lights in front of it, and the mirror pieces there (reflected
+/// light); empty when there is none.
 Eigen::AlignedBox3d sources_in_front(const std::vector<EmittingFace>& faces,
                                      const std::vector<MirrorPiece>& pieces,
+                                     const std::vector<PointLight>& lights,
                                      const MirrorPiece& mirror, double in_plane);
 
 /// Culling beams (000 §5): false when no segment from the mirrored receiver x' (behind the

@@ -205,6 +205,21 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
     return first_outline.empty() ||
            may_show_through(first_outline, first_normal, *crossing_from, image);
   };
+  // Point lights radiate on the last leg only, mapped like its faces: a light seen in a
+  // mirror is its image (000 §3, the image method, exact for a point). The local pass over the
+  // unfolded scene decides their visibility through the black frames of the apertures exactly.
+  for (const PointLight& light : scene.lights) {
+    const Leg& leg = legs[k];
+    bool on_leg = true;
+    for (const HalfSpace& side : leg.bounds)
+      on_leg = on_leg && side.height(light.position) > in_plane;
+    if (!on_leg) continue;
+    PointLight image = light;
+    image.position = leg.linear * light.position + leg.translation;
+    for (const HalfSpace& plane : beyond_aperture)
+      on_leg = on_leg && plane.height(image.position) > in_plane;
+    if (on_leg) out.scene.lights.push_back(image);
+  }
   for (int j = k; j >= 0; --j) {
     const Leg& leg = legs[j];
     const bool last = j == k;

@@ -87,6 +87,42 @@ TEST(PointLight, ASquareCastsItsShadowWhereSimilarTrianglesPutIt) {
   expect_near(gather(filter, 2, 0).irradiance, closed_form(2, 0), 1e-12, "beside it");
 }
 
+TEST(PointLight, APerfectMirrorShowsItsImageByTheImageMethod) {
+  // A mirror (specular 0.7, gloss 0) on the plane x = 1.5, y in [-1, 1], z in [0, 2.5], facing
+  // the light: x also receives I cos / r^2 from the light's image L' = (2.7, -0.2, 2), times
+  // 0.7, where the segment from x to L' crosses the mirror inside its outline. Exact: no bound.
+  SceneBuilder b;
+  b.rectangle(-5, 1.5, -5, 5, 0, false, b.material("black", Rgb::Zero(), Rgb::Zero()));
+  const int mirror =
+      b.material("mirror", Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Constant(0.7));
+  b.polygon({{1.5, -1, 0}, {1.5, -1, 2.5}, {1.5, 1, 2.5}, {1.5, 1, 0}}, mirror);
+  b.scene().lights.push_back({kLight, kIntensity});
+  const Scene& scene = b.scene();
+  ASSERT_LT(scene.polygons.back().normal.x(), 0) << "the mirror faces the light";
+  const Vec3 image(2.7, -0.2, 2);
+  const auto expected = [&](double x, double y) {
+    Rgb e = closed_form(x, y);
+    const Vec3 p(x, y, 0), to = image - p;
+    const Vec3 crossing = p + to * ((1.5 - x) / to.x());
+    if (std::abs(crossing.y()) < 1 && crossing.z() > 0 && crossing.z() < 2.5)
+      e += 0.7 * kIntensity * (to.z() / std::pow(to.norm(), 3));
+    return e;
+  };
+  int reflected = 0, beside = 0;
+  for (const Method method : {Method::vertex, Method::hemisphere}) {
+    for (const auto& [x, y] :
+         {std::pair{0.3, -0.2}, {1.0, 0.5}, {-2.0, 1.5}, {0.5, -4.0}, {1.4, 0.0}, {-4.0, -3.0}}) {
+      const LocalPassResult r = gather(b.scene(), x, y, method);
+      expect_near(r.irradiance, expected(x, y), 1e-12,
+                  "at " + std::to_string(x) + ", " + std::to_string(y));
+      EXPECT_EQ(r.bound, Rgb::Zero()) << "the image of a point light is gathered exactly";
+      (expected(x, y) == closed_form(x, y) ? beside : reflected)++;
+    }
+  }
+  EXPECT_GE(reflected, 6) << "points that see the image";
+  EXPECT_GE(beside, 2) << "points whose line to the image misses the mirror";
+}
+
 TEST(PointLight, NothingReachesAPointBehindOrInTheLightsPlane) {
   for (const Vec3& light : {Vec3(0, 0, -1), Vec3(3, 0, 0), Vec3(0.5, 0.5, 0)}) {
     Scene scene = floor_scene(false);
