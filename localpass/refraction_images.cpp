@@ -314,39 +314,16 @@ bool may_pass(const RefractionPath& path, const Vec3& x) {
 std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Vec3& viewpoint,
                                           bool entering, double tolerance, int max_pieces,
                                           const std::vector<const RefractingFacet*>& beyond) {
-  // The spread of the depth ratio over a piece, seen from the viewpoint, in its worst channel.
-  const auto own_spread = [&](const RefractingFacet& piece) {
-    const auto ratio = [&](const Vec3& p, int c) {
-      const Vec3 leg = p - viewpoint;
-      const double length = leg.norm();
-      const double cos_near = length > 0 ? std::abs(leg.dot(piece.normal)) / length : 0;
-      const double n = piece.refraction.ior[c];
-      return depth_ratio(cos_near, entering ? n : 1 / n);
-    };
-    // The angle is smallest (the ratio's argument cos largest) at the point of the piece
-    // nearest the viewpoint's foot on the plane: with the vertices it brackets the range, and
-    // it finds a window of light inside a piece whose corners are all past the critical angle.
-    std::vector<Vec3> samples = piece.outline;
-    samples.push_back(nearest_point(piece, viewpoint));
-    double worst = 0;
-    for (int c = 0; c < 3; ++c) {
-      const std::optional<double> middle = ratio(piece.centroid, c);
-      for (const Vec3& v : samples) {
-        const std::optional<double> corner = ratio(v, c);
-        if (!middle && !corner) continue;
-        if (!middle || !corner || !(*middle > 0)) return std::numeric_limits<double>::infinity();
-        worst = std::max(worst, std::abs(*corner - *middle) / *middle);
-      }
-    }
-    return worst;
-  };
-  // With facets beyond, the spread of the depth ratio at each facet of the chain along the
-  // rays from the viewpoint through the piece, refracted on (the traced path), in the worst
-  // facet and channel: infinite where some ray passes and the centroid's does not, or the
-  // reverse.
+  // The spread of the depth ratio over a piece: at each facet of the chain (this one, then
+  // `beyond`), along the rays from the viewpoint through the piece refracted on (the traced
+  // path), against the ray through its centroid, in the worst facet and channel; infinite where
+  // some ray passes and the centroid's does not, or the reverse. The angle is smallest (the
+  // ratio's argument cos largest) at the point of the piece nearest the viewpoint's foot on the
+  // plane: with the vertices it brackets the range, and it finds a window of light inside a
+  // piece whose corners are all past the critical angle.
   RefractionPath chain{{&facet}, !entering, true};
   chain.facets.insert(chain.facets.end(), beyond.begin(), beyond.end());
-  const auto chain_spread = [&](const RefractingFacet& piece) {
+  const auto spread = [&](const RefractingFacet& piece) {
     std::vector<Vec3> samples = piece.outline;
     samples.push_back(nearest_point(piece, viewpoint));
     double worst = 0;
@@ -362,9 +339,6 @@ std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Ve
       }
     }
     return worst;
-  };
-  const auto spread = [&](const RefractingFacet& piece) {
-    return beyond.empty() ? own_spread(piece) : chain_spread(piece);
   };
   // The widest spread first; among equal spreads (those across the critical angle are all
   // infinite) the largest piece, so that the budget goes around the whole critical curve

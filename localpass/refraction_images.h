@@ -113,7 +113,8 @@ bool may_pass(const RefractionPath& path, const Vec3& x);
 /// right where the depth ratio k hardly varies over the facet as seen from `viewpoint`. Splits
 /// `facet` in two (through its centroid, across its longest extent), widest spread first, until
 /// over each piece max |k(v) - k(c)| / k(c) <= `tolerance` at its vertices v in every channel (a
-/// piece partly past the critical angle counts as infinitely spread) or there are `max_pieces`.
+/// piece partly past the critical angle counts as infinitely spread; a channel the facet passes
+/// nothing of is not looked at) or there are `max_pieces`.
 /// Each piece keeps the facet's plane, material and object. An infinite tolerance keeps the facet
 /// whole (the paper's method).
 ///

@@ -206,19 +206,18 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
            may_show_through(first_outline, first_normal, *crossing_from, image);
   };
   // Point lights radiate on the last leg only, mapped like its faces: a light seen in a
-  // mirror is its image (000 §3, the image method, exact for a point). The local pass over the
-  // unfolded scene decides their visibility through the black frames of the apertures exactly.
+  // mirror is its image (000 §3, the image method, exact for a point). A mirror chain's local
+  // pass over the unfolded scene decides their visibility through the black frames of the
+  // apertures exactly; refraction images are gathered by their faces only and leave them out.
+  const auto strictly_inside = [&](const std::vector<HalfSpace>& sides, const Vec3& p) {
+    return std::all_of(sides.begin(), sides.end(),
+                       [&](const HalfSpace& side) { return side.height(p) > in_plane; });
+  };
   for (const PointLight& light : scene.lights) {
-    const Leg& leg = legs[k];
-    bool on_leg = true;
-    for (const HalfSpace& side : leg.bounds)
-      on_leg = on_leg && side.height(light.position) > in_plane;
-    if (!on_leg) continue;
+    if (!strictly_inside(legs[k].bounds, light.position)) continue;
     PointLight image = light;
-    image.position = leg.linear * light.position + leg.translation;
-    for (const HalfSpace& plane : beyond_aperture)
-      on_leg = on_leg && plane.height(image.position) > in_plane;
-    if (on_leg) out.scene.lights.push_back(image);
+    image.position = legs[k].linear * light.position + legs[k].translation;
+    if (strictly_inside(beyond_aperture, image.position)) out.scene.lights.push_back(image);
   }
   for (int j = k; j >= 0; --j) {
     const Leg& leg = legs[j];
