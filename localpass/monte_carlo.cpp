@@ -23,6 +23,7 @@ MonteCarloGatherer::MonteCarloGatherer(const Scene& scene, const std::vector<Emi
   }
   caster_ = std::make_unique<RayCaster>(faces_scene_);
   offset_ = scene.tolerance().ray_offset;
+  lights_ = std::make_unique<PointLightIrradiance>(*caster_, offset_);
 }
 
 MonteCarloGatherer::~MonteCarloGatherer() = default;
@@ -52,12 +53,10 @@ Rgb MonteCarloGatherer::gather(const Vec3& x, const Vec3& n, int samples, uint64
           offset_);
     }
   }
-  // Point lights: no ray can hit one, so their direct light is added as it is (I cos / r^2
-  // through the filters between: scene/point_lights.h), with no noise.
-  const Rgb lights = faces_scene_.lights.empty()
-                         ? Rgb::Zero()
-                         : point_light_irradiance(faces_scene_, *caster_, x, n, offset_);
-  return lights + sum / static_cast<double>(strata * strata);
+  // Point lights: no ray can hit one (nor its image in a mirror), so their direct light is
+  // added as it is (I cos / r^2 through the filters between, straight and by the mirrors'
+  // images: scene/point_lights.h), with no noise.
+  return (*lights_)(x, n) + sum / static_cast<double>(strata * strata);
 }
 
 }  // namespace rad

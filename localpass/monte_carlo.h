@@ -6,12 +6,13 @@
 /// filters (000 §2.2) and reflects off mirrors (000 §3, to the scene's mirror depth), collecting
 /// each surface's front radiosity weighted by what the filters and mirrors before it passed
 /// on, and ends at the first opaque polygon. Point lights, which no ray can hit, add their
-/// direct light as it is (scene/point_lights.h). Seeded per point, so a result does
-/// not depend on the order or the thread it is computed in.
+/// direct light as it is, straight and by the mirrors' images (scene/point_lights.h). Seeded per
+/// point, so a result does not depend on the order or the thread it is computed in.
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "scene/point_lights.h"
 #include "scene/polygon_faces.h"
 #include "scene/ray_caster.h"
 #include "scene/scene.h"
@@ -32,6 +33,7 @@ class MonteCarloGatherer {
   Scene faces_scene_;
   std::vector<Rgb> exitance_;
   std::unique_ptr<RayCaster> caster_;
+  std::unique_ptr<PointLightIrradiance> lights_;
   double offset_ = 0;  ///< Rays start this far along the normal, off the receiver's own face
 };
 

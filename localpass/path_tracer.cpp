@@ -27,7 +27,8 @@ PathTracer::PathTracer(const Scene& scene, bool interface_reflections)
     : scene_(scene),
       caster_(scene),
       offset_(scene.tolerance().ray_offset),
-      limits_(RayCaster::limits_of(scene)) {
+      limits_(RayCaster::limits_of(scene)),
+      lights_(caster_, offset_) {
   limits_.interface_reflections = interface_reflections;
   limits_.glossy_as_mirror = false;  // their lobes are sampled here
   emitter_of_.assign(scene.polygons.size(), -1);
@@ -60,11 +61,11 @@ Rgb PathTracer::straight_emission(const Vec3& p, const Vec3& normal, std::mt1993
   // M T(p, z) cos_p cos_z A / (pi r^2) estimates the light it sends straight to p, T what the
   // polygons between pass (0 through an opaque one); its back radiates nothing. Weighted by
   // the balance heuristic against the cosine rays (which count the rest of it).
-  // Point lights: their direct light, I cos / r^2 through what lies between (nothing a
-  // cosine ray can hit: a point has no area).
+  // Point lights: their direct light, I cos / r^2 through what lies between, and by their
+  // images in the perfect mirrors (nothing a cosine ray can hit: a point has no area, and a
+  // mirror's image of one neither).
   std::uniform_real_distribution<double> u(0, 1);
-  Rgb h = scene_.lights.empty() ? Rgb::Zero()
-                                : point_light_irradiance(scene_, caster_, p, normal, offset_);
+  Rgb h = lights_(p, normal);
   for (const Emitter& e : emitters_) {
     const double pick = u(rng) * e.area;
     const size_t k = std::min<size_t>(

@@ -22,6 +22,7 @@
 #include <random>
 #include <vector>
 
+#include "scene/point_lights.h"
 #include "scene/ray_caster.h"
 #include "scene/scene.h"
 
@@ -68,8 +69,9 @@ class PathTracer {
 
   const Scene& scene_;
   RayCaster caster_;
-  double offset_ = 0;        ///< Rays start this far along the normal, off the surface
-  RayCaster::Bends limits_;  ///< The scene's, and whether interfaces reflect
+  double offset_ = 0;            ///< Rays start this far along the normal, off the surface
+  RayCaster::Bends limits_;      ///< The scene's, and whether interfaces reflect
+  PointLightIrradiance lights_;  ///< Straight and by the mirrors' images: no ray hits a light
   std::vector<Emitter> emitters_;
   std::vector<int> emitter_of_;  ///< Per polygon: its index in emitters_, or -1
 };

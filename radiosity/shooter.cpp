@@ -28,26 +28,12 @@ Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
   return {centre, r};
 }
 
-namespace {
-
-/// True when p (in the piece's plane) lies in its outline (convex, counter-clockwise).
-bool in_outline(const MirrorPiece& m, const Vec3& p) {
-  const size_t k = m.outline.size();
-  for (size_t i = 0; i < k; ++i) {
-    const Vec3& a = m.outline[i];
-    const Vec3& b = m.outline[(i + 1) % k];
-    if ((b - a).cross(p - a).dot(m.normal) < 0) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
     : caster_(caster),
       culling_(caster.scene(), epsilon),
       epsilon_(epsilon),
-      cull_(settings.shaft_culling) {
+      cull_(settings.shaft_culling),
+      lights_(caster, epsilon) {
   side_ =
       std::max(1, static_cast<int>(std::ceil(std::sqrt(std::max(1, settings.visibility_samples)))));
   seed_ = settings.seed;
@@ -62,10 +48,7 @@ Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double
   chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
 }
 
-Rgb Shooter::point_light_irradiance(const Vec3& x, const Vec3& n) const {
-  if (caster_.scene().lights.empty()) return Rgb::Zero();
-  return rad::point_light_irradiance(caster_.scene(), caster_, x, n, epsilon_);
-}
+Rgb Shooter::point_light_irradiance(const Vec3& x, const Vec3& n) const { return lights_(x, n); }
 
 Rgb Shooter::visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                                  uint64_t key, int fewer) const {
@@ -153,7 +136,7 @@ Rgb Shooter::image_form_factor(const Vec3& x, const Vec3& n, const Patch& shoote
         break;
       }
       const Vec3 p = from + (hf / (hf - ht)) * (target - from);
-      if (!in_outline(m, p)) {
+      if (!m.contains(p)) {
         passed = Rgb::Zero();
         break;
       }

@@ -10,6 +10,7 @@
 #include "radiosity/shadow_culling.h"
 #include "radiosity/solution.h"
 #include "scene/mirror_pieces.h"
+#include "scene/point_lights.h"
 #include "scene/ray_caster.h"
 
 namespace rad {
@@ -39,8 +40,9 @@ class Shooter {
   Rgb visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                           uint64_t key, int fewer = 1) const;
 
-  /// The irradiance at x (unit normal n) straight from the scene's point lights
-  /// (scene/point_lights.h), the shadow rays offset by epsilon like the patches'.
+  /// The irradiance at x (unit normal n) from the scene's point lights, straight and by their
+  /// images in the mirrors (scene/point_lights.h), the shadow rays offset by epsilon like the
+  /// patches'.
   Rgb point_light_irradiance(const Vec3& x, const Vec3& n) const;
 
   /// True when the point x (normal n) lies inside a closed object: every probe ray from just
@@ -83,6 +85,7 @@ class Shooter {
   double in_plane_ = 0;
   std::vector<MirrorPiece> pieces_;
   std::vector<std::vector<int>> chains_;  ///< Of at most Scene::mirror_depth reflections
+  PointLightIrradiance lights_;
 };
 
 }  // namespace rad

@@ -20,6 +20,16 @@ struct MirrorPiece {
   double height(const Vec3& p) const { return normal.dot(p) - offset; }
   Vec3 reflect(const Vec3& p) const { return p - 2 * height(p) * normal; }
   Vec3 reflect_direction(const Vec3& d) const { return d - 2 * normal.dot(d) * normal; }
+  /// True when p (in the piece's plane) lies in its outline (its edges included).
+  bool contains(const Vec3& p) const {
+    const size_t k = outline.size();
+    for (size_t i = 0; i < k; ++i) {
+      const Vec3& a = outline[i];
+      const Vec3& b = outline[(i + 1) % k];
+      if ((b - a).cross(p - a).dot(normal) < 0) return false;
+    }
+    return true;
+  }
 };
 
 /// The convex pieces of the scene's mirror polygons (material specular > 0; concave ones as

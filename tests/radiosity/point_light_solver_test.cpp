@@ -12,6 +12,7 @@
 #include "radiosity/solution_faces.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
+#include "tests/mirrored_light.h"
 #include "tests/scene_builder.h"
 
 namespace rad {
@@ -52,6 +53,30 @@ TEST(PointLightSolver, EveryFloorElementHoldsTheInverseSquareLawAtItsCentroid) {
   for (int c = 0; c < 3; ++c)
     EXPECT_NEAR(s.stats.emitted[c], 4 * std::numbers::pi * light.intensity[c], 1e-12);
   EXPECT_GT(s.stats.escaped.minCoeff(), 0) << "the upper half of its light leaves";
+}
+
+TEST(PointLightSolver, AMirrorsImageOfTheLightReachesTheFloor) {
+  // A black floor beside a perfect mirror (tests/mirrored_light.h): the lights' one shot is all
+  // any element receives, so each floor leaf holds the closed form at its centroid, the light's
+  // image included (without it, the leaves in the image's light would hold the straight light
+  // alone). With a grey floor the ledger still balances: the mirror's specular part is counted
+  // where it lands, not also as escaped.
+  const test::MirroredLight black;
+  const Solution s = solve(RayCaster(black.scene), SolverSettings{});
+  int reflected = 0;
+  for (const int e : s.leaves()) {
+    const Element& el = s.elements[e];
+    if (el.polygon != 0) continue;
+    const Rgb expected = black.expected(el.centroid.x(), el.centroid.y());
+    ASSERT_LE((el.irradiance - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.maxCoeff())
+        << "element " << e << " at " << el.centroid.transpose();
+    reflected += black.reflected(el.centroid.x(), el.centroid.y()) != Rgb::Zero();
+  }
+  EXPECT_GT(reflected, 3) << "leaves in the image's light";
+  const Solution grey =
+      solve(RayCaster(test::MirroredLight(Rgb::Constant(0.5)).scene), SolverSettings{});
+  expect_balanced(grey.stats);
+  EXPECT_GT(grey.stats.escaped.minCoeff(), 0) << "an open scene";
 }
 
 /// A closed unit cube of reflectance rho facing in, a light inside.
