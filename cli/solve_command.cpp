@@ -125,6 +125,9 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
+  sub->add_flag("--opaque-glass{false}", s.glass_as_filters,
+                "Keep refracting objects opaque and black to the solver (by default light "
+                "crosses them unbent, passing their transmittance)");
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_solve(*o); }; });
 }

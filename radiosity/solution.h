@@ -45,6 +45,14 @@ struct SolverSettings {
   /// false casts them all (the baseline the culling is measured against). Not saved in the
   /// solution file.
   bool shaft_culling = true;
+  /// Carry refracting objects (000 §4) as filters: light crosses each interface straight,
+  /// unbent, passing its transmittance (with "fresnel", the Fresnel transmission at normal
+  /// incidence, 1 - ((n - 1) / (n + 1))^2). A heuristic, measured in bench/results/
+  /// specular_solution.md: right in direction through a pane's parallel faces (offset sideways by
+  /// its thickness), wrong by the bending through a block or a prism, and blind to the
+  /// attenuation inside. False keeps them opaque and black, as the solver had them before
+  /// (issue 37), and so does a scene's "refraction_depth": 0. Not saved in the solution file.
+  bool glass_as_filters = true;
 
   /// Throws rad::Error naming the first setting out of its range.
   void validate() const;

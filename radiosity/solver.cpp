@@ -306,17 +306,25 @@ Rgb ProgressiveSolver::stored_form_factor(int shooter, int e, uint64_t key) {
 
 namespace {
 
-/// The scene with every roughened pane a plain filter of its glossy transmittance; nothing when
-/// it has none.
-std::optional<Scene> panes_as_filters(const Scene& scene) {
-  if (std::none_of(scene.materials.begin(), scene.materials.end(),
-                   [](const Material& m) { return m.is_glossy_pane(); }))
-    return std::nullopt;
+/// The scene as the solver carries it: every roughened pane a plain filter of its glossy
+/// transmittance, and with `glass`, every refracting interface a filter of what a crossing
+/// passes (SolverSettings::glass_as_filters); nothing when that changes nothing.
+std::optional<Scene> carried_scene(const Scene& scene, bool glass) {
+  const auto changes = [&](const Material& m) {
+    return m.is_glossy_pane() || (glass && m.refracts());
+  };
+  if (std::none_of(scene.materials.begin(), scene.materials.end(), changes)) return std::nullopt;
   Scene out = scene;
   for (Material& m : out.materials) {
-    if (!m.is_glossy_pane()) continue;
-    m.transmittance = m.glossy_transmittance;
-    m.glossy_transmittance = Rgb::Zero();
+    if (m.is_glossy_pane()) {
+      m.transmittance = m.glossy_transmittance;
+      m.glossy_transmittance = Rgb::Zero();
+    } else if (glass && m.refracts()) {
+      const Refraction& r = *m.refraction;
+      const Rgb normal_reflection = ((r.ior.array() - 1) / (r.ior.array() + 1)).square().matrix();
+      m.transmittance = r.fresnel ? Rgb(Rgb::Ones() - normal_reflection) : r.transmittance;
+      m.refraction.reset();
+    }
   }
   return out;
 }
@@ -329,9 +337,11 @@ Solution solve(const RayCaster& caster, const SolverSettings& settings,
   const auto start = std::chrono::steady_clock::now();
   // A roughened pane is carried as the filter of its glossy transmittance: at the scale of
   // patches its blur matters little, and a pane in front of a lamp would otherwise take most of
-  // the scene's light out of the solution. (Glossy mirrors are not carried: their chains of
-  // images cost too much on a curved mesh; the ledger's `redirected` counts them.)
-  const std::optional<Scene> carried = panes_as_filters(caster.scene());
+  // the scene's light out of the solution. Glass likewise, unbent (SolverSettings::
+  // glass_as_filters). (Glossy mirrors are not carried: their chains of images cost too much on
+  // a curved mesh; the ledger's `redirected` counts them.)
+  const std::optional<Scene> carried = carried_scene(
+      caster.scene(), settings.glass_as_filters && caster.scene().refraction_depth > 0);
   std::optional<RayCaster> carried_caster;
   if (carried) carried_caster.emplace(*carried);
   ProgressiveSolver solver(carried_caster ? *carried_caster : caster, settings);

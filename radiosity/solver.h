@@ -36,6 +36,7 @@ struct SolveProgress {
 /// what they inherited is shot as a correction, negative where they hold less.
 /// Glossy surfaces (paper 003): a glossy mirror's specular part is not carried (the ledger's
 /// `redirected`); a roughened pane is carried as the filter of its glossy transmittance.
+/// Refracting objects are carried as filters, unbent (SolverSettings::glass_as_filters).
 /// Parallel over receivers (TBB); bitwise deterministic for a given seed whatever the thread
 /// count. Throws Error for invalid settings.
 Solution solve(const RayCaster& caster, const SolverSettings& settings,

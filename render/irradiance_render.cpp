@@ -17,8 +17,9 @@ namespace rad {
 namespace {
 
 /// Shared pixel loop: `shade(hit, weight, index, out)` adds `weight` times what a front-facing
-/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and reflects
-/// off mirrors (000 §3, to the scene's mirror depth; RayCaster::follow): each surface it meets
+/// hit shows to pixel `index`. The eye ray passes on through filters (000 §2.2) and roughened
+/// panes (straight, their lobe's centre), and reflects off mirrors (000 §3, to the scene's
+/// mirror depth; glossy ones about their lobe's centre; RayCaster::follow): each surface it meets
 /// is weighted by what the filters and mirrors before it pass on, and an opaque one ends it.
 /// Without filters and mirrors that is the first hit alone, as before. Over an MPI job the
 /// image is cut into tiles, handed out by `job` and gathered on its root (the other processes'
@@ -29,6 +30,19 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
                               const std::function<void(size_t)>& progress, const Job& job,
                               const Shade& shade) {
   const Scene& scene = caster.scene();
+  // A roughened pane seen from its back: no radiosity (one-sided, DESIGN §3), but the point
+  // lights on its front side show through its lobe (glossy_highlight, either side), apart as
+  // glossy light like a highlight; the eye ray passes on through it (RayCaster::follow).
+  const auto back_highlight = [&](const Hit& hit, const Rgb& weight, size_t index,
+                                  IrradianceImage& out) {
+    const Material& m = scene.materials[scene.polygons[hit.polygon].material];
+    if (!m.is_glossy_pane()) return;
+    const Rgb highlight = weight.cwiseProduct(glossy_highlight(
+        scene, caster, m, hit.point, hit.normal,
+        shading_normal(scene.polygons[hit.polygon], hit.point), -hit.direction, gap));
+    out.radiosity.pixels[index] += highlight;
+    out.glossy.pixels[index] += highlight;
+  };
   const int width = camera.width(), height = camera.height();
   IrradianceImage out;
   out.radiosity = Image(width, height);
@@ -47,7 +61,10 @@ IrradianceImage render_pixels(const RayCaster& caster, const Camera& camera, dou
         const size_t index = static_cast<size_t>(y) * width + x;
         caster.follow(camera.ray(x + 0.5, y + 0.5), RayCaster::limits_of(scene), gap,
                       [&](const Hit& hit, const Rgb& weight, int) {
-                        if (!hit.front_facing) return;
+                        if (!hit.front_facing) {
+                          back_highlight(hit, weight, index, out);
+                          return;
+                        }
                         shade(hit, weight, index, out);
                         out.surface[index] = 1;
                       });

@@ -256,7 +256,9 @@ void RayCaster::follow(const Ray& ray, Bends limits, double gap,
       }
       if (m.refracts() && b.bends.refractions < limits.refractions)
         split_at_interface(b, *hit, *m.refraction, limits.interface_reflections, gap, branches);
-      b.weight = b.weight.cwiseProduct(m.transmittance);
+      const Rgb passed =
+          limits.glossy_as_mirror ? Rgb(m.transmittance + m.glossy_transmittance) : m.transmittance;
+      b.weight = b.weight.cwiseProduct(passed);
       if (b.weight == Rgb::Zero()) break;
       b.t_min = std::max(hit->distance, b.t_min) + gap;  // on past it, never back
     }

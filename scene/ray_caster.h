@@ -64,9 +64,11 @@ class RayCaster {
     /// As a limit: false follows only the refracted rays at interfaces, dropping what they
     /// reflect (Fresnel, total internal reflection): the model of 000 §4's heuristic.
     bool interface_reflections = true;
-    /// As a limit: false leaves glossy surfaces (Material::gloss > 0) unreflected, for a caller
-    /// that samples their lobe itself (the path tracer); true reflects them about the lobe's
-    /// centre, as mirrors (the eye rays, the Monte Carlo gather).
+    /// As a limit: false leaves glossy surfaces (Material::gloss > 0) unreflected and roughened
+    /// panes unpassed, for a caller that samples their lobes itself (the path tracer); true
+    /// takes each lobe's centre: reflects glossy mirrors about it, as mirrors, and passes
+    /// roughened panes straight on, as filters of their glossy transmittance (the eye rays,
+    /// the Monte Carlo gather; the solver carries a pane the same way).
     bool glossy_as_mirror = true;
   };
   /// The scene's limits: mirror_depth and refraction_depth.

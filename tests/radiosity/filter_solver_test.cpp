@@ -1,5 +1,6 @@
-// The progressive solver with filters (paper 000 §2.2): shadow rays carry the transmittance
-// per channel, and the ledger counts what a filter absorbs at its front and at its back.
+// The progressive solver with filters (paper 000 §2.2), and glass carried as filters: shadow
+// rays carry the transmittance per channel, and the ledger counts what a filter absorbs at its
+// front and at its back.
 #include <gtest/gtest.h>
 
 #include "radiosity/solver.h"
@@ -81,6 +82,60 @@ TEST(FilterSolver, LedgerCountsWhatFiltersAbsorbAtFrontAndBack) {
   EXPECT_GT(st.absorbed.x(), 0.5 * st.emitted.x());
   EXPECT_GT(st.escaped.x(), 0);
   EXPECT_GT(st.refined, 0) << "the ledger must hold through refinement too";
+}
+
+/// lamp_over_floor with, in the filter's place, a slab of glass [-2, 2]^2 x [0.9, 1.1] (a
+/// refracting box, 000 §4) and refraction followed `refraction_depth` deep.
+Scene lamp_over_glass(const Refraction& glass, int refraction_depth) {
+  SceneBuilder b;
+  b.scene() = lamp_over_floor(nullptr);
+  b.box(Vec3(-2, -2, 0.9), Vec3(2, 2, 1.1), b.material("glass", glass));
+  b.scene().refraction_depth = refraction_depth;
+  return b.scene();
+}
+
+TEST(GlassSolver, CarriesAPaneAsAFilterOfWhatItsTwoCrossingsPass) {
+  // Every floor point sees the lamp through the slab's two faces, so with glass carried as
+  // filters (SolverSettings::glass_as_filters) each floor element holds T^2 times what it holds
+  // without the slab: T the interface's transmittance, or with Fresnel at normal incidence
+  // 1 - ((1.5 - 1) / (1.5 + 1))^2 = 0.96. Opaque glass (the setting off, or refraction off in
+  // the scene) leaves the floor dark.
+  Refraction tinted;
+  tinted.transmittance = Rgb(0.9, 0.7, 0.5);
+  Refraction fresnel;
+  fresnel.fresnel = true;
+  const struct {
+    Refraction glass;
+    Rgb passed;
+  } cases[] = {{tinted, Rgb(0.81, 0.49, 0.25)}, {fresnel, Rgb::Constant(0.96 * 0.96)}};
+  SolverSettings settings;
+  settings.refine_threshold = 0;  // the same mesh in all
+  const Solution open = solve(RayCaster(lamp_over_floor(nullptr)), settings);
+  for (const auto& c : cases) {
+    const Solution glass = solve(RayCaster(lamp_over_glass(c.glass, 2)), settings);
+    SolverSettings opaque_settings = settings;
+    opaque_settings.glass_as_filters = false;
+    const Solution opaque = solve(RayCaster(lamp_over_glass(c.glass, 2)), opaque_settings);
+    const Solution off = solve(RayCaster(lamp_over_glass(c.glass, 0)), settings);
+    int floor_elements = 0;
+    for (size_t e = 0; e < open.elements.size(); ++e) {
+      if (open.elements[e].polygon != 0) continue;
+      ++floor_elements;
+      const Rgb expected = c.passed.cwiseProduct(open.elements[e].radiosity);
+      ASSERT_LE((glass.elements[e].radiosity - expected).cwiseAbs().maxCoeff(),
+                1e-12 * expected.maxCoeff())
+          << "element " << e << ": " << glass.elements[e].radiosity.transpose() << " against "
+          << expected.transpose();
+      ASSERT_EQ(opaque.elements[e].radiosity, Rgb::Zero()) << "element " << e;
+      ASSERT_EQ(off.elements[e].radiosity, Rgb::Zero()) << "element " << e;
+    }
+    EXPECT_GT(floor_elements, 10);
+    for (int ch = 0; ch < 3; ++ch) {
+      const SolveStats& st = glass.stats;
+      EXPECT_NEAR(st.absorbed[ch] + st.escaped[ch] + st.unshot[ch], st.emitted[ch],
+                  1e-9 * st.emitted[ch]);
+    }
+  }
 }
 
 }  // namespace
