@@ -1,5 +1,5 @@
 #pragma once
-/// Closed forms for tests: configuration factors (Howell's catalog; shared/ground-truth/
+/// Closed forms for tests: configuration factors (Howell's catalog; docs/
 /// formfactors.md) and Fresnel's reflectances. Independent of the code under test: plain
 /// formulas.
 #include <cmath>
@@ -42,7 +42,7 @@ inline FresnelReflectance hecht_reflectance(double i, double eta) {
           std::pow(std::tan(i - t) / std::tan(i + t), 2)};
 }
 
-/// Test vectors from shared/ground-truth/formfactors.md (15 digits).
+/// Test vectors from docs/formfactors.md (15 digits).
 struct HowellCase {
   double a, b, c;  ///< B-3: (a, b, c); perpendicular: (w, h, s)
   double F;

@@ -150,7 +150,7 @@ Scene opposed_squares() {
 }
 
 TEST(Solver, MatchesHowellC11ForOpposedSquares) {
-  const double howell_c11 = 0.199824895698387;  // shared/ground-truth/formfactors.md
+  const double howell_c11 = 0.199824895698387;  // docs/formfactors.md
   const Scene scene = opposed_squares();
   for (const double patch_size : {SolverSettings{}.patch_size, SolverSettings{}.patch_size / 2}) {
     SolverSettings settings;
