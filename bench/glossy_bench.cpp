@@ -23,12 +23,12 @@
 
 #include "bench/heuristic_measures.h"
 #include "formats/points_csv.h"
-#include "localpass/glossy_transfer.h"
 #include "localpass/local_pass.h"
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 #include "scene/polygon_faces.h"
 #include "scene/polygon_validation.h"
 #include "scene/scene_loader.h"
+#include "specular/glossy_transfer.h"
 #include "viz/charts.h"
 
 using rad::bench::median_seconds;

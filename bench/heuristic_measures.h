@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "formats/points_csv.h"
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 
 namespace rad::bench {
 

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "formats/solution_io.h"
-#include "localpass/path_tracer.h"
 #include "radiosity/solution.h"
+#include "reference/path_tracer.h"
 #include "scene/polygon.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"

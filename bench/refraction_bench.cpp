@@ -28,7 +28,7 @@
 #include "bench/heuristic_measures.h"
 #include "formats/points_csv.h"
 #include "localpass/local_pass.h"
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 #include "scene/polygon_faces.h"
 #include "scene/scene_loader.h"
 #include "viz/charts.h"

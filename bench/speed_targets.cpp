@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "localpass/monte_carlo.h"
 #include "radiosity/solution_faces.h"
 #include "radiosity/solver.h"
+#include "reference/monte_carlo.h"
 #include "render/irradiance_render.h"
 #include "scene/ray_caster.h"
 #include "scene/scene_loader.h"

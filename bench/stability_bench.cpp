@@ -20,7 +20,7 @@
 
 #include "hemisphere/hemisphere_gatherer.h"
 #include "localpass/local_pass.h"
-#include "localpass/monte_carlo.h"
+#include "reference/monte_carlo.h"
 #include "scene/polygon_faces.h"
 #include "tests/filter_identity.h"
 #include "tests/random_scenes.h"

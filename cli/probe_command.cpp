@@ -24,9 +24,9 @@
 #include "formats/solution_io.h"
 #include "localpass/local_pass.h"
 #include "localpass/method.h"
-#include "localpass/monte_carlo.h"
-#include "localpass/path_tracer.h"
 #include "radiosity/solution_faces.h"
+#include "reference/monte_carlo.h"
+#include "reference/path_tracer.h"
 #include "scene/error.h"
 #include "scene/polygon_faces.h"
 
@@ -165,7 +165,7 @@ void run_probe(const ProbeOptions& o) {
     } else {
       // Both exact methods see the same faces (the polygons, concave ones as triangles). With
       // mirrors, refraction, point lights or glossy surfaces, the local pass at tolerance 0 (it
-      // unfolds mirrors and refraction: localpass/mirror_images.h, refraction_images.h; adds the
+      // unfolds mirrors and refraction: specular/mirror_images.h, refraction_images.h; adds the
       // lights and the glossy beams).
       bool mirrors = false;
       for (const Polygon& p : scene.polygons)

@@ -10,7 +10,7 @@
 #include "formats/atomic_file.h"
 #include "formats/image_io.h"
 #include "localpass/local_pass.h"
-#include "localpass/monte_carlo.h"
+#include "reference/monte_carlo.h"
 #include "scene/error.h"
 #include "scene/ray_caster.h"
 

@@ -9,9 +9,9 @@
 #include "geometry/lambert.h"
 #include "hemisphere/blocker_surface.h"
 #include "localpass/cluster_bounds.h"
-#include "localpass/mirror_images.h"
-#include "localpass/refraction_images.h"
 #include "scene/polygon_faces.h"
+#include "specular/mirror_images.h"
+#include "specular/refraction_images.h"
 
 namespace rad {
 namespace {
@@ -41,7 +41,7 @@ std::vector<OctreeItem> octree_items(const std::vector<EmittingFace>& faces) {
 struct LocalPass::Mirror {
   MirrorPiece first;                ///< The chain's first mirror: x must face it
   Eigen::AlignedBox3d sources;      ///< What can be seen through it (the culling beam's target)
-  UnfoldedScene unfolded;           ///< The chain unfolded (localpass/mirror_images.h)
+  UnfoldedScene unfolded;           ///< The chain unfolded (specular/mirror_images.h)
   std::unique_ptr<LocalPass> pass;  ///< Over `unfolded`, which has no mirrors of its own
 };
 

@@ -51,13 +51,13 @@
 #include "geometry/exact_gatherer.h"
 #include "geometry/tolerance.h"
 #include "localpass/cluster_tree.h"
-#include "localpass/glossy_transfer.h"
 #include "localpass/method.h"
 #include "localpass/occlusion_culling.h"
 #include "localpass/point_light_visibility.h"
 #include "localpass/visible_set.h"
 #include "octree/octree.h"
 #include "scene/scene.h"
+#include "specular/glossy_transfer.h"
 
 namespace rad {
 
@@ -68,14 +68,14 @@ struct LocalPassSettings {
   /// Longest chain of plane-mirror reflections gathered (000 §3): 0 ignores mirrors (their
   /// diffuse part still radiates), 1 gathers each mirror's reflection, 2 also reflections of
   /// reflections, ... Each chain of k mirrors is unfolded into a scene of k + 1 copies of the
-  /// faces (localpass/mirror_images.h), and the number of chains grows like
+  /// faces (specular/mirror_images.h), and the number of chains grows like
   /// (mirror pieces facing each other)^depth. Unset: the scene's (Scene::mirror_depth).
   std::optional<int> mirror_depth;
   /// Longest chain of refracting facets gathered through (000 §4): 0 ignores refraction (the
   /// interfaces are opaque), 2 sees through a convex block. Unset: the scene's
   /// (Scene::refraction_depth).
   std::optional<int> refraction_depth;
-  /// The refraction heuristic's accuracy knob (localpass/refraction_images.h, facet_pieces and
+  /// The refraction heuristic's accuracy knob (specular/refraction_images.h, facet_pieces and
   /// RefractionPath::traced): a chain's first facet is split until, along the rays from x
   /// through each piece refracted on through the chain's other facets, the depth ratio at every
   /// facet varies by at most this much; each piece's angles are those of its centroid's ray.
@@ -86,7 +86,7 @@ struct LocalPassSettings {
   /// Skip paths whose later facets' images lie outside the earlier ones' (000 §5's beams); false:
   /// every path (the same values).
   bool refraction_culling = true;
-  /// Glossy transfer (paper 003, localpass/glossy_transfer.h): the scatterers' and emitters'
+  /// Glossy transfer (paper 003, specular/glossy_transfer.h): the scatterers' and emitters'
   /// splits and the hierarchy's cut. `glossy_transfer` false leaves it out.
   GlossySettings glossy;
   bool glossy_transfer = true;
@@ -119,11 +119,11 @@ struct LocalPassResult {
   /// H(x) refracted through transparent polyhedra (000 §4), by the paper's heuristic: NOT
   /// covered by `bound`, and not in `irradiance`. The total is irradiance + refracted.
   Rgb refracted = Rgb::Zero();
-  int refracted_images = 0;  ///< Exact gathers of refracted images (localpass/refraction_images.h)
+  int refracted_images = 0;  ///< Exact gathers of refracted images (specular/refraction_images.h)
   /// H(x) from point sources reflected by glossy surfaces (003's beams): NOT covered by
   /// `bound`, and not in `irradiance`. The total is irradiance + refracted + glossy.
   Rgb glossy = Rgb::Zero();
-  int glossy_beams = 0;  ///< Beams evaluated (localpass/glossy_transfer.h)
+  int glossy_beams = 0;  ///< Beams evaluated (specular/glossy_transfer.h)
 };
 
 /// The octree's items: one per face, with its polygon's normal and its exitance.
@@ -141,14 +141,14 @@ class LocalPass {
   /// Irradiance at x for unit normal n, to the given relative tolerance (0: exact, every face
   /// that may be hidden radiating in one gather). With mirrors, H(x) = H_direct(x) + sum over
   /// chains c whose first mirror x faces of specular_c H_c(T_c x), each H_c a local pass of its
-  /// own over c's unfolded scene (localpass/mirror_images.h), at x unfolded with its normal;
+  /// own over c's unfolded scene (specular/mirror_images.h), at x unfolded with its normal;
   /// the bounds add with the same weights (each is certified for its own term). With n terms
   /// at x, each is gathered to tolerance / n, so the total still meets the stopping rule.
   /// Point lights add their direct light exactly (I cos / r^2 through the filters on the
   /// segment; localpass/point_light_visibility.h), with no width to the bound; their light by way
   /// of mirrors and refracting objects is not gathered. Light refracted through transparent
   /// polyhedra goes to `refracted`, apart (000 §4: each chain of facets x faces the first of,
-  /// gathered exactly in its unfolded image at the centroid angles, localpass/refraction_images.h).
+  /// gathered exactly in its unfolded image at the centroid angles, specular/refraction_images.h).
   /// Thread-safe.
   LocalPassResult gather(const Vec3& x, const Vec3& n, double tolerance) const;
 

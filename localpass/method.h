@@ -18,7 +18,7 @@ enum class Method {
   hemisphere,  ///< exact: projection onto the hemisphere (paper 004 §3; hemisphere/)
   vertex,      ///< exact: vertex tracing with angular spans (paper 001; vertex/)
   montecarlo,  ///< sampled: cosine-weighted rays into the solution (the baseline;
-               ///< localpass/monte_carlo.h)
+               ///< reference/monte_carlo.h)
 };
 
 /// "hemisphere", "vertex", "montecarlo".

@@ -3,7 +3,7 @@
 /// (paper 004 §4.1-4.2; DESIGN.md §3 eqs. 5-9): leaves of roughly equal energy, Bmax per voxel,
 /// and the view-dependent bounds Bound(x, v) that order the local pass.
 ///
-/// May use: radiosity, scene, geometry.
+/// May use: geometry.
 #include <Eigen/Geometry>
 #include <vector>
 

@@ -10,8 +10,8 @@
 #include "distributed/job.h"
 #include "formats/image.h"
 #include "localpass/local_pass.h"
-#include "localpass/monte_carlo.h"
-#include "localpass/path_tracer.h"
+#include "reference/monte_carlo.h"
+#include "reference/path_tracer.h"
 #include "scene/camera.h"
 #include "scene/ray_caster.h"
 
@@ -65,7 +65,7 @@ IrradianceSummary summarize(const IrradianceImage& image);
 int tile_side(int width, int height, int processes);
 
 /// The reference: B = E + rho H at the visible points with H from `paths` paths of the path
-/// tracer of the scene itself (localpass/path_tracer.h; no solution), seeded by the pixel
+/// tracer of the scene itself (reference/path_tracer.h; no solution), seeded by the pixel
 /// index (bitwise the same for any thread count).
 IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
                                    const Camera& camera, const PathTracer& tracer, int paths,

@@ -38,7 +38,7 @@ struct Material {
   /// that `specular` scatters into (paper 003: a glossy reflector; "gloss" in the file). 0: a
   /// perfect mirror. The solver and the eye rays take a glossy surface as the mirror of its
   /// lobe's centre; the local pass gathers its light from point lights by glossy beams
-  /// (localpass/glossy_transfer.h), apart from the certified part.
+  /// (specular/glossy_transfer.h), apart from the certified part.
   double gloss = 0;
   /// A roughened pane (paper 003 Fig. 13; "transmittance" with "gloss" in the file): the
   /// fraction passed through into the lobe about the straight-through direction, from either

@@ -1,7 +1,7 @@
 #pragma once
 /// Plane mirrors as the scene has them (paper 000 §3): the convex pieces of its mirror polygons
 /// and the chains of reflections between them worth following. The local pass unfolds each
-/// chain (localpass/mirror_images.h); the solver shoots through them (radiosity/solver.cpp).
+/// chain (specular/mirror_images.h); the solver shoots through them (radiosity/solver.cpp).
 #include <vector>
 
 #include "geometry/vec.h"

@@ -30,7 +30,7 @@ Rgb point_light_irradiance(const Scene& scene, const RayCaster& caster, const Ve
 /// The segment to L^ must cross each piece's plane inside its outline, in order, and each leg
 /// (x -> p_1, ..., p_k -> L) passes what lies on it, as for the straight segment. The solver,
 /// the path tracer and the Monte Carlo gather take lights from here; the local pass unfolds
-/// the same chains exactly (localpass/unfolding.h).
+/// the same chains exactly (specular/unfolding.h).
 class PointLightIrradiance {
  public:
   /// The caster's scene must outlive this; `offset` as for point_light_irradiance.

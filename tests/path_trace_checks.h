@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 
 namespace rad::test {
 

@@ -14,34 +14,38 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kModules{
-    "geometry",  "scene",   "distributed", "hemisphere",  "vertex", "radiosity", "octree",
-    "localpass", "formats", "render",      "experiments", "viz",    "cli"};
+const std::vector<std::string> kModules{"geometry",    "scene",      "specular", "reference",
+                                        "distributed", "hemisphere", "vertex",   "radiosity",
+                                        "octree",      "localpass",  "formats",  "render",
+                                        "experiments", "viz",        "cli"};
 
 /// Modules each module may include (itself included): the graph of docs/architecture.md.
 /// tests/ and bench/ may use everything.
 const std::map<std::string, std::set<std::string>> kAllowedModules{
     {"geometry", {"geometry"}},
     {"scene", {"scene", "geometry"}},
+    {"specular", {"specular", "scene", "geometry"}},
+    {"reference", {"reference", "scene", "geometry"}},
     {"distributed", {"distributed", "scene", "geometry"}},
     {"hemisphere", {"hemisphere", "geometry"}},
     {"vertex", {"vertex", "scene", "geometry"}},
     {"radiosity", {"radiosity", "scene", "geometry"}},
-    {"octree", {"octree", "radiosity", "scene", "geometry"}},
+    {"octree", {"octree", "geometry"}},
     {"localpass",
-     {"localpass", "octree", "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
+     {"localpass", "specular", "octree", "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
     {"formats", {"formats", "radiosity", "scene", "geometry"}},
     {"render",
-     {"render", "localpass", "octree", "radiosity", "scene", "geometry", "formats", "distributed"}},
-    {"experiments",
-     {"experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry", "formats",
-      "distributed"}},
-    {"viz",
-     {"viz", "experiments", "render", "localpass", "octree", "radiosity", "scene", "geometry",
+     {"render", "localpass", "specular", "reference", "octree", "radiosity", "scene", "geometry",
       "formats", "distributed"}},
+    {"experiments",
+     {"experiments", "render", "localpass", "specular", "reference", "octree", "radiosity", "scene",
+      "geometry", "formats", "distributed"}},
+    {"viz",
+     {"viz", "experiments", "render", "localpass", "specular", "reference", "octree", "radiosity",
+      "scene", "geometry", "formats", "distributed"}},
     {"cli",
-     {"cli", "viz", "experiments", "render", "formats", "distributed", "localpass", "octree",
-      "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
+     {"cli", "viz", "experiments", "render", "formats", "distributed", "localpass", "specular",
+      "reference", "octree", "hemisphere", "vertex", "radiosity", "scene", "geometry"}},
 };
 
 /// Third-party headers, by include prefix, and the modules that may include them. Eigen and the
@@ -161,10 +165,21 @@ TEST(ModuleGraph, CheckerCatchesForbiddenIncludes) {
   EXPECT_EQ(
       link_violations("radiosity", "target_link_libraries(rad_radiosity PUBLIC rad_octree)").size(),
       1u);
-  EXPECT_TRUE(
+  // octree includes only geometry, so it links only geometry (issue 38)
+  EXPECT_EQ(
       link_violations(
           "octree", "target_link_libraries(rad_octree PUBLIC rad_radiosity rad_scene rad_warnings)")
-          .empty());
+          .size(),
+      2u);
+  EXPECT_TRUE(
+      link_violations("octree", "target_link_libraries(rad_octree PUBLIC rad_geometry)").empty());
+  // the references know nothing of the local pass, nor the unfolding of the gatherers
+  EXPECT_EQ(
+      include_violations("reference", "reference/a.cpp", "#include \"localpass/local_pass.h\"\n")
+          .size(),
+      1u);
+  EXPECT_EQ(include_violations("specular", "specular/a.h", "#include \"octree/octree.h\"\n").size(),
+            1u);
 }
 
 TEST(ModuleGraph, SourcesIncludeOnlyAllowedModulesAndLibraries) {

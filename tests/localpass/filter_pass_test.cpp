@@ -7,7 +7,7 @@
 #include <random>
 
 #include "localpass/local_pass.h"
-#include "localpass/monte_carlo.h"
+#include "reference/monte_carlo.h"
 #include "scene/error.h"
 #include "tests/coarse_solution.h"
 #include "tests/rgb_checks.h"

@@ -2,7 +2,7 @@
 // and emitters through its glossy polygons, found by the cone hierarchy, against the beams
 // summed by hand, the cubature of the physics (tests/glossy_cubature.h), and the first-order
 // visibility of the scatterer.
-#include "localpass/glossy_transfer.h"
+#include "specular/glossy_transfer.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <numbers>
 
 #include "localpass/local_pass.h"
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 #include "scene/polygon_faces.h"
 #include "tests/glossy_cubature.h"
 #include "tests/path_trace_checks.h"

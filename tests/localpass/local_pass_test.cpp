@@ -8,7 +8,7 @@
 #include <random>
 
 #include "hemisphere/hemisphere_gatherer.h"
-#include "localpass/monte_carlo.h"
+#include "reference/monte_carlo.h"
 #include "render/irradiance_render.h"
 #include "scene/ray_caster.h"
 #include "tests/coarse_solution.h"

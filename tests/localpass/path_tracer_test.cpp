@@ -1,7 +1,7 @@
 // The path tracer of the scene itself (the reference): against the furnace, the furnace with a
 // mirror face, Howell through a filter, and the exact gather off a mirror, each within 4
 // standard errors at a fixed seed.
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 
 #include <gtest/gtest.h>
 

@@ -11,9 +11,9 @@
 #include <utility>
 
 #include "localpass/local_pass.h"
-#include "localpass/monte_carlo.h"
-#include "localpass/path_tracer.h"
 #include "localpass/point_light_visibility.h"
+#include "reference/monte_carlo.h"
+#include "reference/path_tracer.h"
 #include "scene/point_lights.h"
 #include "scene/polygon_faces.h"
 #include "scene/ray_caster.h"
@@ -137,7 +137,7 @@ TEST(PointLight, ThePathTracerAndTheMonteCarloGatherSeeTheMirrorsImageToo) {
 TEST(PointLight, ChainsOfMirrorsAgreeWithTheLocalPassesUnfolding) {
   // A corner of two perpendicular mirrors and a third facing them, an opaque square and a
   // filter among them: images of images (depth 3). The rays of scene/point_lights.h and the
-  // local pass's unfolded scenes (localpass/unfolding.h) share no code but the mirror pieces;
+  // local pass's unfolded scenes (specular/unfolding.h) share no code but the mirror pieces;
   // both are exact, so they agree to rounding at every site, in light and in shadow.
   SceneBuilder b;
   b.rectangle(-3, 3, -3, 3, 0, false, b.material("floor", Rgb::Zero(), Rgb::Zero()));

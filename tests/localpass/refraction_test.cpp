@@ -1,5 +1,5 @@
 // Refraction through polyhedra by apparent depth contraction (paper 000 §4) in the local pass:
-// its exact limits, each against something that does not use localpass/refraction_images.h:
+// its exact limits, each against something that does not use specular/refraction_images.h:
 // index 1 against the thin filters of 000 §2.2 (vertex tracing through the same box as two
 // filters), total internal reflection, one index per channel against three grey runs, and a
 // huge uniform slab against Lambert's formula without it.
@@ -11,9 +11,9 @@
 #include <limits>
 
 #include "localpass/local_pass.h"
-#include "localpass/refraction_images.h"
 #include "scene/polygon.h"
 #include "scene/polygon_faces.h"
+#include "specular/refraction_images.h"
 #include "tests/closed_forms.h"
 #include "tests/scene_builder.h"
 
@@ -183,7 +183,7 @@ Scene under_water(double half) {
 
 TEST(RefractionKnob, UnderWaterTheSkyConvergesToTheClosedForm) {
   // Inside a medium under a uniform sky H = M (the radiance n^2 L fills only the critical cone;
-  // tests/localpass/path_tracer_refraction_test.cpp checks the path tracer against it). The
+  // tests/reference/path_tracer_refraction_test.cpp checks the path tracer against it). The
   // paper's heuristic takes one angle for the whole surface, straight up from x, and sees the
   // whole sky n^2 brighter: n^2 M. Split until the depth ratio varies by 1%, the pieces past
   // the critical angle pass nothing and the rest converge on M.
@@ -248,7 +248,7 @@ TEST(RefractionKnob, PiecesTileTheFacetAndMeetTheTolerance) {
 /// cancel, so H = (1 / pi) integral over the lamp of cos(theta) sin(theta) / (r r'(theta)) dA
 /// (the solid angle dw = sin(theta) dtheta dphi against dA = r dr dphi), by composite
 /// Gauss-Legendre, theta found from r by bisection. No apparent depths: independent of
-/// localpass/refraction_images.h.
+/// specular/refraction_images.h.
 double slab_quadrature(double x0, double y0) {
   const auto reach = [](double theta) {
     const double inside = std::asin(std::sin(theta) / 1.5);

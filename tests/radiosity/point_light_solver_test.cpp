@@ -8,9 +8,9 @@
 #include <numbers>
 
 #include "localpass/local_pass.h"
-#include "localpass/path_tracer.h"
 #include "radiosity/solution_faces.h"
 #include "radiosity/solver.h"
+#include "reference/path_tracer.h"
 #include "scene/ray_caster.h"
 #include "tests/mirrored_light.h"
 #include "tests/scene_builder.h"

@@ -1,4 +1,4 @@
-#include "localpass/unfolding.h"
+#include "specular/unfolding.h"
 
 #include <algorithm>
 #include <cmath>

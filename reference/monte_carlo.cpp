@@ -1,4 +1,4 @@
-#include "localpass/monte_carlo.h"
+#include "reference/monte_carlo.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "localpass/glossy_transfer.h"
+#include "specular/glossy_transfer.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "localpass/refraction_images.h"
+#include "specular/refraction_images.h"
 
 #include <algorithm>
 #include <array>

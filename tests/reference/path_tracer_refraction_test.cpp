@@ -9,7 +9,7 @@
 #include <functional>
 #include <numbers>
 
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 #include "tests/closed_forms.h"
 #include "tests/path_trace_checks.h"
 #include "tests/scene_builder.h"

@@ -1,7 +1,7 @@
 #pragma once
 /// A chain of apertures unfolded into one scene in which light runs straight (paper 000 §3,
-/// §4): the plane mirrors of localpass/mirror_images.h and the refracting facets of
-/// localpass/refraction_images.h are both such chains, differing only in how each leg of the
+/// §4): the plane mirrors of specular/mirror_images.h and the refracting facets of
+/// specular/refraction_images.h are both such chains, differing only in how each leg of the
 /// path is mapped (a reflection for a mirror, a depth contraction for a facet, 000 eq. 9).
 ///
 /// A chain of k apertures has k + 1 legs: leg j (0-based) runs up to aperture j (from the

@@ -1,4 +1,4 @@
-#include "localpass/path_tracer.h"
+#include "reference/path_tracer.h"
 
 #include <algorithm>
 #include <cmath>

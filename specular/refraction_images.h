@@ -4,7 +4,7 @@
 /// n_far / n_near, everything behind f appears moved toward f's plane along n, depths scaled by
 /// k = cos / sqrt(eta^2 - 1 + cos^2) (eqs. 7-9), cos taken once, on the line from x to c
 /// (§4.2). Polygons stay polygons, so a chain of facets f_1 .. f_k (in at one, out at another)
-/// unfolds like a chain of mirrors (localpass/unfolding.h): leg j beyond f_j is mapped by
+/// unfolds like a chain of mirrors (specular/unfolding.h): leg j beyond f_j is mapped by
 /// M_j = T_1 ... T_j (T_j the contraction at f_j), and the exact gatherers gather the moved
 /// sources through the moved outlines at the real x, knowing nothing of refraction.
 ///
@@ -19,7 +19,7 @@
 ///  - the weight of a chain in channel c is the product over its crossings of what each passes
 ///    (the transmittance, or the Fresnel transmission at the centroid angle) and of 1 / eta^2
 ///    (radiance over n^2 is what a crossing keeps: the path tracer shows it is needed, tests/
-///    localpass/path_tracer_refraction_test.cpp), times exp(-attenuation length) over the legs
+///    reference/path_tracer_refraction_test.cpp), times exp(-attenuation length) over the legs
 ///    of the centroid path inside a medium;
 ///  - total internal reflection at f_j in a channel (eta^2 - 1 + cos^2 <= 0) passes nothing in
 ///    it, and the light it reflects is not followed (§4.2: "no light through that facet");
@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "geometry/emitting_face.h"
-#include "localpass/unfolding.h"
 #include "scene/scene.h"
+#include "specular/unfolding.h"
 
 namespace rad {
 

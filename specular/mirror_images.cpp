@@ -1,4 +1,4 @@
-#include "localpass/mirror_images.h"
+#include "specular/mirror_images.h"
 
 #include <algorithm>
 #include <cmath>

@@ -25,13 +25,13 @@
 
 #include "geometry/emitting_face.h"
 #include "geometry/vec.h"
-#include "localpass/unfolding.h"
 #include "scene/mirror_pieces.h"
 #include "scene/scene.h"
+#include "specular/unfolding.h"
 
 namespace rad {
 
-/// Unfolds `faces` (faces of `scene`) along the chain of `pieces` (localpass/unfolding.h): its
+/// Unfolds `faces` (faces of `scene`) along the chain of `pieces` (specular/unfolding.h): its
 /// receiver map is T_1, its `specular` the product of the chain's specular reflectances. Faces
 /// within `in_plane` of a plane count as on it: a leg bounded by that plane leaves them out (the
 /// mirror covers them, or they are seen edge-on). The frames reach from each outline to past the
