@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include "formats/solution_io.h"
@@ -13,6 +15,13 @@
 #include "scene/scene_loader.h"
 
 namespace rad::cli {
+
+const CLI::Validator kFinite(
+    [](const std::string& text) -> std::string {
+      const double value = std::strtod(text.c_str(), nullptr);
+      return std::isfinite(value) ? std::string() : "not a finite number: " + text;
+    },
+    "");
 
 namespace {
 bool strict_scenes = false;
@@ -143,6 +152,7 @@ void ProgressBar::finish() {
 void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help) {
   sub->add_option("-t,--tolerance", *tolerance, help)
       ->check(CLI::Range(0.0, 0.99))
+      ->check(kFinite)
       ->capture_default_str();
 }
 
@@ -153,7 +163,8 @@ void add_refraction_options(CLI::App* sub, LocalPassSettings* settings) {
          "ratio at every facet, along the rays through each piece refracted on by Snell's law, "
          "varies by at most this much (relative); default: one angle per facet on the centroid "
          "path, paper 000 section 4's heuristic")
-      ->check(CLI::Range(1e-6, 1e6));
+      ->check(CLI::Range(1e-6, 1e6))
+      ->check(kFinite);
   sub->add_option("--refraction-pieces", settings->refraction_max_pieces,
                   "Refracting materials: at most this many pieces of a chain's first facet")
       ->check(CLI::Range(1, 4096))
@@ -176,6 +187,7 @@ void add_glossy_options(CLI::App* sub, LocalPassSettings* settings) {
                   "Glossy materials: a beam reaches only receivers within this many lobe spreads "
                   "(sigma) of its directions (the hierarchy's cut)")
       ->check(CLI::Range(1.0, 1e9))
+      ->check(kFinite)
       ->capture_default_str();
 }
 

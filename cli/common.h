@@ -15,6 +15,10 @@
 
 namespace rad::cli {
 
+/// Refuses "nan", "inf" and their kin for a number option: they pass CLI11's ranges (every
+/// comparison with NaN is false) and would run as a wrong setting. No text in --help.
+extern const CLI::Validator kFinite;
+
 /// The local pass's options, shared by render and probe: --tolerance (in [0, 0.99]) and
 /// --samples (Monte Carlo rays per `unit`), with their defaults shown.
 void add_tolerance_option(CLI::App* sub, double* tolerance, const std::string& help);

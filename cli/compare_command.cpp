@@ -3,8 +3,10 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "experiments/error_map.h"
 #include "formats/image_io.h"
 #include "scene/error.h"
@@ -29,7 +31,19 @@ void run_compare(const CompareOptions& o) {
                      " has " + std::to_string(reference.width) + "x" +
                      std::to_string(reference.height));
   }
+  // A NaN or an infinity compares as nothing (every comparison with NaN is false): refuse it.
+  for (const auto& [file, picture] : {std::pair{&o.image, &image}, {&o.reference, &reference}}) {
+    for (size_t i = 0; i < picture->pixels.size(); ++i) {
+      if (picture->pixels[i].allFinite()) continue;
+      throw InputError(*file + ": pixel (" + std::to_string(i % picture->width) + ", " +
+                       std::to_string(i / picture->width) + ") is not a finite number");
+    }
+  }
   const ErrorMap map = relative_error_map(image, reference, o.floor);
+  if (map.stats.pixels == 0) {
+    throw InputError(o.reference + ": no pixel to compare: the reference is 0 everywhere" +
+                     (o.floor > 0 ? std::string(" or below the floor") : std::string()));
+  }
   std::cout << "image: " << o.image << "\nreference: " << o.reference
             << "\npixels compared: " << map.stats.pixels << " (skipped " << map.stats.skipped
             << (o.floor > 0 ? " where the reference is below the floor)\n"
@@ -80,11 +94,13 @@ void add_compare_command(CLI::App& app, Run& run) {
   sub->add_flag("--no-png", o->no_png, "Do not write the heat map");
   sub->add_option("--max", o->max,
                   "Error at the top of the colour bar (default: the largest error)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->check(kFinite);
   sub->add_option("--floor", o->floor,
                   "Compare only pixels whose reference exceeds this fraction of its mean (a "
                   "sampled reference is noise alone in the dark); default 0: every lit pixel")
       ->check(CLI::Range(0.0, 1.0))
+      ->check(kFinite)
       ->capture_default_str();
   sub->callback([o, &run] { run = [o] { run_compare(*o); }; });
 }

@@ -2,20 +2,18 @@
 // ParaView (the patch mesh, the octree, a render's per-pixel statistics) and a picture of the
 // patch mesh from the scene camera.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "formats/image_io.h"
+#include "formats/render_stats.h"
 #include "formats/solution_io.h"
 #include "localpass/local_pass.h"
 #include "octree/octree.h"
 #include "radiosity/solution_faces.h"
-#include "scene/error.h"
 #include "scene/polygon_faces.h"
 #include "viz/vtk_export.h"
 
@@ -28,22 +26,6 @@ struct ExportOptions {
   double exposure = 0;
   bool no_png = false;
 };
-
-/// The per-pixel file a render wrote beside its stats JSON ("pixels_file").
-std::filesystem::path pixels_file_of(const std::string& stats_path) {
-  std::ifstream in(stats_path);
-  if (!in) throw InputError(stats_path + ": cannot open the stats file");
-  nlohmann::json stats;
-  try {
-    in >> stats;
-  } catch (const std::exception& e) {
-    throw InputError(stats_path + ": not a stats JSON from `radiosity render`: " + e.what());
-  }
-  if (!stats.is_object() || !stats.contains("pixels_file") || !stats["pixels_file"].is_string()) {
-    throw InputError(stats_path + ": no \"pixels_file\"; render the image again with this version");
-  }
-  return std::filesystem::path(stats_path).parent_path() / stats["pixels_file"].get<std::string>();
-}
 
 void run_export(const ExportOptions& o) {
   const Scene scene = load_scene_reporting(o.scene);
@@ -114,7 +96,8 @@ void add_export_command(CLI::App& app, Run& run) {
   add_image_size_options(sub, &o->width, &o->height, "patch_mesh.png");
   sub->add_option("--exposure", o->exposure,
                   "patch_mesh.png exposure in stops (linear * 2^exposure)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kFinite);
   sub->add_flag("--no-png", o->no_png, "Do not draw patch_mesh.png (no X display or Xvfb needed)");
   sub->callback([o, &run] { run = [o] { run_export(*o); }; });
 }

@@ -108,7 +108,11 @@ void run_info(const InfoOptions& options) {
   std::cout << "materials      " << scene.materials.size() << "\n";
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mat = scene.materials[m];
-    std::cout << "  " << std::left << std::setw(12) << mat.name << std::right << " reflectance "
+    // A name is the file's: its escape sequences must not reach the terminal.
+    std::string name = mat.name;
+    for (char& c : name)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    std::cout << "  " << std::left << std::setw(12) << name << std::right << " reflectance "
               << triple(mat.reflectance) << "  emission " << triple(mat.emission) << "  ";
     // The paper-000 keys only where they are set, so opaque scenes read as before.
     if (mat.is_filter()) std::cout << "transmittance " << triple(mat.transmittance) << "  ";

@@ -7,7 +7,9 @@
 // work over all of them (distributed/job.h); the other commands run on the root alone. Only the
 // root prints and writes; the others' stdout and stderr are muted.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -23,20 +25,19 @@ namespace {
 /// One line, whatever a message holds: line breaks, escape codes and other control characters
 /// (a library's coloured log, a file name with a newline) become spaces.
 std::string one_line(const std::string& message) {
-  // A message quotes what it found in a file, which may be one 2 GB "word": a line stays
-  // readable at 1000 characters.
-  constexpr size_t kLongest = 1000;
+  // A message quotes what it found in a file, which may be one 2 GB "word" (a name of a
+  // megabyte): a line stays readable at 1000 characters, cut in the middle, so that its start
+  // (the file) and its end (the problem) both show.
+  constexpr size_t kHead = 400, kTail = 600;
   std::string out;
   for (const char c : message) {
-    if (out.size() == kLongest) {
-      out += " [...]";
-      break;
-    }
     const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
     if (control && (out.empty() || out.back() == ' ')) continue;
     out += control ? ' ' : c;
   }
   while (!out.empty() && out.back() == ' ') out.pop_back();
+  if (out.size() > kHead + kTail)
+    out = out.substr(0, kHead) + " [...] " + out.substr(out.size() - kTail);
   return out;
 }
 
@@ -72,10 +73,20 @@ class Muted : public std::streambuf {
   int overflow(int c) override { return traits_type::not_eof(c); }
 };
 
-}  // namespace
+/// Flushes stdout and checks that all of it was written (a full disk, a closed pipe): what a
+/// command printed there is its result. Returns the status to exit with.
+int checked_stdout(int status) {
+  errno = 0;
+  std::cout.flush();
+  const bool ok = std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good();
+  const int error = errno;
+  if (ok) return status;
+  std::cerr << "radiosity: error: cannot write to stdout"
+            << (error != 0 ? std::string(": ") + std::strerror(error) : std::string()) << "\n";
+  return 1;
+}
 
-int main(int argc, char** argv) {
-  const rad::Job job(&argc, &argv);
+int run_main(const rad::Job& job, int argc, char** argv) {
   static Muted muted;  // outlives main: the streams flush at exit
   if (!job.is_root()) {
     std::cout.rdbuf(&muted);
@@ -126,4 +137,12 @@ int main(int argc, char** argv) {
   // and the root has printed before any process exits with 1).
   job.finish();
   return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const rad::Job job(&argc, &argv);
+  const int status = run_main(job, argc, argv);
+  return job.is_root() ? checked_stdout(status) : status;
 }

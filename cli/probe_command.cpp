@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/inputs.h"
+#include "cli/methods.h"
 #include "distributed/job.h"
 #include "distributed/packed_bytes.h"
 #include "formats/atomic_file.h"
@@ -32,13 +33,6 @@
 
 namespace rad::cli {
 namespace {
-
-/// The local pass's methods and the path tracer.
-std::vector<std::string> probe_method_names() {
-  std::vector<std::string> names = method_names();
-  names.push_back("pathtrace");
-  return names;
-}
 
 struct ProbeOptions {
   std::string scene;
@@ -95,13 +89,177 @@ std::vector<ProbePoint> read_points_everywhere(const Job& job, const std::string
   return points;
 }
 
+/// The bound of a sampled value: nothing certified (an empty column).
+constexpr double kSampled = std::numeric_limits<double>::infinity();
+
+/// What a probe computes, one slot a point: E, the bound (largest channel), and the columns
+/// only some methods and scenes have (empty otherwise).
+struct ProbeColumns {
+  std::vector<Rgb> irradiance;
+  std::vector<double> bound;        ///< 0: exact; infinity: sampled, nothing certified
+  std::vector<Rgb> standard_error;  ///< the path tracer's
+  std::vector<Rgb> refracted;       ///< 000 §4's heuristic part, kept apart
+  std::vector<Rgb> glossy;          ///< 003's heuristic part, kept apart
+
+  ProbeColumns(size_t points, bool path_traced, bool refracts, bool glossy_surfaces)
+      : irradiance(points),
+        bound(points, 0.0),
+        standard_error(path_traced ? points : 0, Rgb::Zero()),
+        refracted(refracts ? points : 0, Rgb::Zero()),
+        glossy(glossy_surfaces ? points : 0, Rgb::Zero()) {}
+};
+
+/// The gatherers a probe may build; only the chosen method's is (vertex tracing precomputes
+/// interpenetrations).
+struct ProbeGatherers {
+  std::optional<PathTracer> path_tracer;  ///< the scene itself, every bounce sampled
+  std::unique_ptr<ExactGatherer> direct;  ///< direct lighting, no specular transfer
+  std::optional<LocalPass> pass;
+  std::optional<MonteCarloGatherer> monte_carlo;
+};
+
+bool any_material(const Scene& scene, bool (Material::*has)() const) {
+  for (const Polygon& p : scene.polygons)
+    if ((scene.materials[p.material].*has)()) return true;
+  return false;
+}
+
+/// Builds the chosen method's gatherer into `g` and returns the gather of point i into `out`.
+std::function<void(size_t)> point_gather(const ProbeOptions& o, const MethodTraits& m,
+                                         const Inputs& inputs,
+                                         const std::vector<ProbePoint>& points, ProbeGatherers& g,
+                                         ProbeColumns& out) {
+  const Scene& scene = inputs.scene;
+  const bool refracts = !out.refracted.empty(), glossy = !out.glossy.empty();
+  if (m.solution == SolutionUse::refused) {
+    g.path_tracer.emplace(scene, !o.no_interface_reflections);
+    return [&o, &points, &g, &out](size_t i) {
+      const PathTraceEstimate e =
+          traced_to_target(*g.path_tracer, points[i], o.samples, o.target_error, i);
+      out.irradiance[i] = e.mean;
+      out.standard_error[i] = e.standard_error;
+      out.bound[i] = kSampled;
+    };
+  }
+  // The local pass, for the exact methods: from the solution, or (direct lighting) at
+  // tolerance 0 when the scene has mirrors, refraction, point lights or glossy surfaces (it
+  // unfolds mirrors and refraction: specular/mirror_images.h, refraction_images.h; adds the
+  // lights and the glossy beams).
+  const auto local_pass = [&](double tolerance, bool bounded) -> std::function<void(size_t)> {
+    return [&points, &g, &out, tolerance, bounded, refracts, glossy](size_t i) {
+      const LocalPassResult r = g.pass->gather(points[i].x, points[i].n, tolerance);
+      out.irradiance[i] = r.irradiance;
+      if (bounded) out.bound[i] = r.bound.maxCoeff();
+      if (refracts) out.refracted[i] = r.refracted;
+      if (glossy) out.glossy[i] = r.glossy;
+    };
+  };
+  if (inputs.solution) {
+    std::vector<EmittingFace> faces = faces_from_solution(scene, *inputs.solution);
+    if (!m.exact) {
+      g.monte_carlo.emplace(scene, faces);
+      return [&o, &points, &g, &out](size_t i) {
+        out.irradiance[i] = g.monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
+        out.bound[i] = kSampled;
+      };
+    }
+    g.pass.emplace(scene, std::move(faces), *m.local, o.settings);
+    return local_pass(o.tolerance, true);
+  }
+  // Both exact methods see the same faces (the polygons, concave ones as triangles).
+  const bool mirrors = any_material(scene, &Material::is_mirror) && scene.mirror_depth > 0;
+  if (mirrors || refracts || glossy || !scene.lights.empty()) {
+    g.pass.emplace(scene, faces_from_polygons(scene), *m.local, o.settings);
+    return local_pass(0, false);
+  }
+  g.direct = make_exact_gatherer(*m.local, scene, faces_from_polygons(scene));
+  return [&points, &g, &out](size_t i) {
+    out.irradiance[i] = exact_irradiance(*g.direct, points[i].x, points[i].n);
+  };
+}
+
+/// Runs `gather` over every point, with a progress bar: in parallel on this machine, or over
+/// an MPI job in runs of points, 8 a process or more, as the tiles of a render
+/// (render/irradiance_render.h). Each point is independent and written to its own slot: output
+/// order and values do not depend on the thread count, nor on the processes. False on a
+/// process other than the root of a job (its columns hold only its runs).
+bool gather_points(const Job& job, size_t count, const std::function<void(size_t)>& gather,
+                   ProbeColumns& out) {
+  ProgressBar bar("probe");
+  const auto progress = [&](size_t finished) {
+    bar.update(static_cast<double>(finished) / count, std::to_string(finished) + " points");
+  };
+  if (!job.distributed()) {
+    std::atomic<size_t> done{0};
+    tbb::parallel_for(size_t(0), count, [&](size_t i) {
+      gather(i);
+      const size_t finished = ++done;
+      if (finished % 256 == 0) progress(finished);
+    });
+    bar.finish();
+    return true;
+  }
+  const size_t run = std::max<size_t>(1, count / (8 * static_cast<size_t>(job.size())));
+  std::vector<std::vector<Rgb>*> columns{&out.irradiance};
+  for (std::vector<Rgb>* c : {&out.standard_error, &out.refracted, &out.glossy})
+    if (!c->empty()) columns.push_back(c);
+  BlockWork work;
+  work.blocks = (count + run - 1) / run;
+  const auto range = [&](size_t b) {
+    return tbb::blocked_range<size_t>(b * run, std::min(count, (b + 1) * run));
+  };
+  work.compute = [&](size_t b) {
+    tbb::parallel_for(range(b), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) gather(i);
+    });
+  };
+  work.pack = [&](size_t b) {
+    PackedBytes bytes;
+    for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
+      for (const std::vector<Rgb>* c : columns) bytes.put_each((*c)[i]);
+      bytes.put(out.bound[i]);
+    }
+    return bytes.take();
+  };
+  work.unpack = [&](size_t b, std::string_view data) {
+    PackedBytes bytes(data);
+    for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
+      for (std::vector<Rgb>* c : columns) bytes.get_each((*c)[i]);
+      bytes.get(out.bound[i]);
+    }
+    if (!bytes.at_end()) throw Error("probe: a run of points came back with the wrong size");
+  };
+  work.progress = [&](size_t blocks) { progress(std::min(count, blocks * run)); };
+  job.run_blocks(work);
+  if (!job.is_root()) return false;
+  bar.finish();
+  return true;
+}
+
+/// Writes the CSV to -o or stdout: the heuristic parts apart from E only for the local pass
+/// (the path tracer follows refraction and glossy lobes itself, in E; Monte Carlo's rays
+/// follow refraction and take glossy surfaces as mirrors).
+void write_probe_output(const ProbeOptions& o, const std::vector<ProbePoint>& points,
+                        const ProbeColumns& c, const ProbeGatherers& g) {
+  const std::vector<Rgb>* errors = g.path_tracer ? &c.standard_error : nullptr;
+  std::vector<ApartColumns> apart;
+  if (!c.refracted.empty() && g.pass) apart.push_back({"refracted", &c.refracted});
+  if (!c.glossy.empty() && g.pass) apart.push_back({"glossy", &c.glossy});
+  const auto write = [&](std::ostream& out) {
+    write_probe_csv(out, points, c.irradiance, c.bound, errors, apart);
+  };
+  if (o.output.empty()) {
+    write(std::cout);
+  } else {
+    write_text_file(o.output, write);
+  }
+}
+
 void run_probe(const ProbeOptions& o) {
-  if (o.target_error > 0 && o.method != "pathtrace")
+  const MethodTraits& m = method_traits(o.method);
+  if (o.target_error > 0 && m.solution != SolutionUse::refused)
     throw InputError("--target-error is for --method pathtrace");
-  if (o.method == "pathtrace" && !o.solution.empty())
-    throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
-  if (o.method == "montecarlo" && o.solution.empty())
-    throw InputError("--method montecarlo needs --solution (a .vtp written by `radiosity solve`)");
+  check_solution_use(m, !o.solution.empty(), MethodCommand::probe);
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
   // Over an MPI job: the inputs and the points read on the root and sent to all, runs of points
@@ -110,154 +268,23 @@ void run_probe(const ProbeOptions& o) {
   const Inputs inputs = load_inputs(job, o.scene, o.solution);
   const Scene& scene = inputs.scene;
   const std::vector<ProbePoint> points = read_points_everywhere(job, o.points);
-  std::vector<Rgb> irradiance(points.size());
-  std::vector<double> bound(points.size(), 0.0);  // exact: no error to bound
-  std::vector<Rgb> standard_error;                // the path tracer's
-  // 000 §4: light refracted through transparent polyhedra, the heuristic part, kept apart.
-  bool refracts = false;
-  for (const Polygon& p : scene.polygons)
-    refracts = refracts || scene.materials[p.material].refracts();
-  refracts = refracts && scene.refraction_depth > 0;
-  std::vector<Rgb> refracted(refracts ? points.size() : 0, Rgb::Zero());
-  // 003: light from point sources by way of glossy surfaces, the other heuristic part.
-  bool glossy = false;
-  for (const Polygon& p : scene.polygons)
-    glossy = glossy || scene.materials[p.material].is_glossy();
-  std::vector<Rgb> glossy_part(glossy ? points.size() : 0, Rgb::Zero());
-  std::function<void(size_t)> gather;
-  // The path tracer of the scene itself: no solution, every bounce sampled.
-  std::optional<PathTracer> path_tracer;
-  // Only the chosen method is built (vertex tracing precomputes interpenetrations).
-  const Method method = parse_method(o.method).value_or(Method::montecarlo);
-  std::unique_ptr<ExactGatherer> direct;
-  std::optional<LocalPass> pass;
-  std::optional<MonteCarloGatherer> monte_carlo;
-  // Built on every process; a failure on one fails on all (Job::step).
   job.step([&] {
-    if (o.method == "pathtrace") {
-      path_tracer.emplace(scene, !o.no_interface_reflections);
-      standard_error.assign(points.size(), Rgb::Zero());
-      gather = [&](size_t i) {
-        const PathTraceEstimate e =
-            traced_to_target(*path_tracer, points[i], o.samples, o.target_error, i);
-        irradiance[i] = e.mean;
-        standard_error[i] = e.standard_error;
-        bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
-      };
-    } else if (inputs.solution) {
-      const Solution& solution = *inputs.solution;
-      if (!is_exact(method)) {
-        monte_carlo.emplace(scene, faces_from_solution(scene, solution));
-        gather = [&](size_t i) {
-          irradiance[i] = monte_carlo->gather(points[i].x, points[i].n, o.samples, i);
-          bound[i] = std::numeric_limits<double>::infinity();  // sampled: nothing certified (empty)
-        };
-      } else {
-        pass.emplace(scene, faces_from_solution(scene, solution), method, o.settings);
-        gather = [&](size_t i) {
-          const LocalPassResult r = pass->gather(points[i].x, points[i].n, o.tolerance);
-          irradiance[i] = r.irradiance;
-          bound[i] = r.bound.maxCoeff();
-          if (refracts) refracted[i] = r.refracted;
-          if (glossy) glossy_part[i] = r.glossy;
-        };
-      }
-    } else {
-      // Both exact methods see the same faces (the polygons, concave ones as triangles). With
-      // mirrors, refraction, point lights or glossy surfaces, the local pass at tolerance 0 (it
-      // unfolds mirrors and refraction: specular/mirror_images.h, refraction_images.h; adds the
-      // lights and the glossy beams).
-      bool mirrors = false;
-      for (const Polygon& p : scene.polygons)
-        mirrors = mirrors || scene.materials[p.material].is_mirror();
-      if ((mirrors && scene.mirror_depth > 0) || refracts || glossy || !scene.lights.empty()) {
-        pass.emplace(scene, faces_from_polygons(scene), method, o.settings);
-        gather = [&](size_t i) {
-          const LocalPassResult r = pass->gather(points[i].x, points[i].n, 0);
-          irradiance[i] = r.irradiance;
-          if (refracts) refracted[i] = r.refracted;
-          if (glossy) glossy_part[i] = r.glossy;
-        };
-      } else {
-        direct = make_exact_gatherer(method, scene, faces_from_polygons(scene));
-        gather = [&](size_t i) {
-          irradiance[i] = exact_irradiance(*direct, points[i].x, points[i].n);
-        };
-      }
-    }
+    if (job.is_root()) check_outputs({{"the output (-o)", o.output}});
   });
+  const bool refracts = any_material(scene, &Material::refracts) && scene.refraction_depth > 0;
+  ProbeColumns columns(points.size(), m.solution == SolutionUse::refused, refracts,
+                       any_material(scene, &Material::is_glossy));
+  ProbeGatherers gatherers;
+  std::function<void(size_t)> gather;
+  // Built on every process; a failure on one fails on all (Job::step).
+  job.step([&] { gather = point_gather(o, m, inputs, points, gatherers, columns); });
+  if (!gather_points(job, points.size(), gather, columns)) return;
+  write_probe_output(o, points, columns, gatherers);
 
-  ProgressBar bar("probe");
-  std::atomic<size_t> done{0};
-  // Each point is independent and written to its own slot: output order and values do not
-  // depend on the thread count, nor on the processes of an MPI job.
-  if (!job.distributed()) {
-    tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-      gather(i);
-      const size_t finished = ++done;
-      if (finished % 256 == 0)
-        bar.update(static_cast<double>(finished) / points.size(),
-                   std::to_string(finished) + " points");
-    });
-  } else {
-    // Runs of points, 8 a process or more, as the tiles of a render (render/irradiance_render.h).
-    const size_t run = std::max<size_t>(1, points.size() / (8 * static_cast<size_t>(job.size())));
-    std::vector<std::vector<Rgb>*> columns{&irradiance};
-    for (std::vector<Rgb>* c : {&standard_error, &refracted, &glossy_part})
-      if (!c->empty()) columns.push_back(c);
-    BlockWork work;
-    work.blocks = (points.size() + run - 1) / run;
-    const auto range = [&](size_t b) {
-      return tbb::blocked_range<size_t>(b * run, std::min(points.size(), (b + 1) * run));
-    };
-    work.compute = [&](size_t b) {
-      tbb::parallel_for(range(b), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) gather(i);
-      });
-    };
-    work.pack = [&](size_t b) {
-      PackedBytes bytes;
-      for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
-        for (const std::vector<Rgb>* c : columns) bytes.put_each((*c)[i]);
-        bytes.put(bound[i]);
-      }
-      return bytes.take();
-    };
-    work.unpack = [&](size_t b, std::string_view data) {
-      PackedBytes bytes(data);
-      for (size_t i = range(b).begin(); i != range(b).end(); ++i) {
-        for (std::vector<Rgb>* c : columns) bytes.get_each((*c)[i]);
-        bytes.get(bound[i]);
-      }
-      if (!bytes.at_end()) throw Error("probe: a run of points came back with the wrong size");
-    };
-    work.progress = [&](size_t blocks) {
-      const size_t finished = std::min(points.size(), blocks * run);
-      bar.update(static_cast<double>(finished) / points.size(),
-                 std::to_string(finished) + " points");
-    };
-    job.run_blocks(work);
-    if (!job.is_root()) return;
-  }
-  bar.finish();
-
-  const std::vector<Rgb>* errors = path_tracer ? &standard_error : nullptr;
-  // The path tracer follows refraction exactly: its E is the whole. Monte Carlo's rays too.
-  std::vector<ApartColumns> apart;
-  if (refracts && pass) apart.push_back({"refracted", &refracted});
-  // The path tracer follows glossy lobes itself; Monte Carlo takes glossy surfaces as mirrors.
-  if (glossy && pass) apart.push_back({"glossy", &glossy_part});
-  if (o.output.empty()) {
-    write_probe_csv(std::cout, points, irradiance, bound, errors, apart);
-  } else {
-    write_text_file(o.output, [&](std::ostream& file) {
-      write_probe_csv(file, points, irradiance, bound, errors, apart);
-    });
-  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string what =
-      path_tracer
+      gatherers.path_tracer
           ? "the scene path-traced, " + std::to_string(o.samples) + " paths a point" +
                 (o.target_error > 0
                      ? " a batch, to a relative standard error of " + std::to_string(o.target_error)
@@ -308,7 +335,7 @@ void add_probe_command(CLI::App& app, Run& run) {
          "--samples cosine-weighted rays per point, bound left empty. pathtrace (no --solution): "
          "the scene itself path-traced, every bounce sampled, --samples paths per point, the "
          "reference; adds columns se_r,se_g,se_b (standard errors), bound left empty")
-      ->check(CLI::IsMember(probe_method_names()))
+      ->check(CLI::IsMember(method_names_for(MethodCommand::probe)))
       ->capture_default_str();
   add_solution_option(sub, &o->solution, ": gather from its elements");
   add_refraction_options(sub, &o->settings);
@@ -327,9 +354,10 @@ void add_probe_command(CLI::App& app, Run& run) {
                   "error is at most this fraction of its value (at most " +
                       std::to_string(max_batches) + " batches; 0: one batch)")
       ->check(CLI::Range(0.0, 1.0))
+      ->check(kFinite)
       ->capture_default_str();
   sub->add_option("-o,--output", o->output,
-                  "Output CSV (default: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
+                  "Output CSV (default or -: stdout): x,y,z,nx,ny,nz,E_r,E_g,E_b,bound");
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_probe(*o); }; });
 }

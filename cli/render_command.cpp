@@ -1,23 +1,24 @@
 // `radiosity render SCENE [--solution S.vtp] --method hemisphere|vertex|patches|albedo|facing
 // [--tolerance T] -o IMAGE.exr`: per-pixel images from the scene camera; the exact methods run
 // the error-bounded local pass and write a stats JSON next to the image.
-#include <tbb/task_arena.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/inputs.h"
+#include "cli/methods.h"
 #include "distributed/job.h"
 #include "formats/atomic_file.h"
 #include "formats/image_io.h"
+#include "formats/render_stats.h"
 #include "formats/solution_io.h"
-#include "localpass/method.h"
 #include "radiosity/solution_faces.h"
 #include "reference/path_tracer.h"
 #include "render/albedo_render.h"
@@ -28,13 +29,6 @@
 
 namespace rad::cli {
 namespace {
-
-/// The local pass's methods (localpass/method.h) and the plain renders.
-std::vector<std::string> render_method_names() {
-  std::vector<std::string> names = method_names();
-  for (const char* plain : {"patches", "albedo", "facing", "pathtrace"}) names.emplace_back(plain);
-  return names;
-}
 
 struct RenderOptions {
   std::string scene;
@@ -55,39 +49,39 @@ struct RenderOptions {
 };
 
 /// Per-pixel statistics of a local-pass render, as written to the stats JSON.
-nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& image,
-                                int face_count, int leaves, double seconds) {
+RenderStats local_pass_stats(const RenderOptions& o, const IrradianceImage& image, int face_count,
+                             int leaves, double seconds) {
   IrradianceSummary summary = summarize(image);
   if (image.samples_per_pixel > 0) {
     // Monte Carlo: the file has always reported the rays per pixel in these fields.
     summary.gathered_exactly_mean = summary.projected_mean = image.samples_per_pixel;
     summary.gathered_exactly_max = summary.projected_max = image.samples_per_pixel;
   }
-  const double faces = face_count;
-  nlohmann::json out;
-  out["method"] = o.method;
+  RenderStats out;
+  out.method = o.method;
   if (image.samples_per_pixel > 0) {
-    out["samples"] = o.samples;
+    out.samples = o.samples;
   } else {
-    out["tolerance"] = o.tolerance;
+    out.tolerance = o.tolerance;
   }
-  out["width"] = image.radiosity.width;
-  out["height"] = image.radiosity.height;
-  out["seconds"] = seconds;
-  out["threads"] = tbb::this_task_arena::max_concurrency();  // a process's
-  out["processes"] = Job::world().size();
-  out["faces"] = face_count;
-  out["octree_leaves"] = leaves;
-  out["pixels_gathered"] = summary.pixels;
-  out["emitting_per_pixel"] = {{"mean", summary.gathered_exactly_mean},
-                               {"max", summary.gathered_exactly_max}};
-  out["emitting_fraction_mean"] = summary.gathered_exactly_mean / faces;
-  out["projected_per_pixel"] = {{"mean", summary.projected_mean}, {"max", summary.projected_max}};
-  out["projected_fraction_mean"] = summary.projected_mean / faces;
-  out["clusters_per_pixel"] = {{"mean", summary.clusters_mean}};
-  out["bound"] = {{"relative_mean", summary.relative_bound_mean},
-                  {"relative_max", summary.relative_bound_max},
-                  {"max", summary.bound_max}};
+  out.width = image.radiosity.width;
+  out.height = image.radiosity.height;
+  out.seconds = seconds;
+  // A process's threads: what -j allows (the task arena reports the machine's cores).
+  out.threads = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  out.processes = Job::world().size();
+  out.faces = face_count;
+  out.octree_leaves = leaves;
+  out.pixels_gathered = summary.pixels;
+  out.emitting_mean = summary.gathered_exactly_mean;
+  out.emitting_max = summary.gathered_exactly_max;
+  out.projected_mean = summary.projected_mean;
+  out.projected_max = summary.projected_max;
+  out.clusters_mean = summary.clusters_mean;
+  out.relative_bound_mean = summary.relative_bound_mean;
+  out.relative_bound_max = summary.relative_bound_max;
+  out.bound_max = summary.bound_max;
   // The heuristic parts (000 §4's refraction, 003's glossy beams), apart from the bound (which
   // covers the rest).
   double total_sum = 0;
@@ -97,9 +91,7 @@ nlohmann::json local_pass_stats(const RenderOptions& o, const IrradianceImage& i
     double sum = 0;
     for (const Rgb& r : part->pixels) pixels += r.sum() > 0, sum += r.sum();
     if (pixels == 0) continue;
-    out[name] = {{"pixels", pixels},
-                 {"share_of_light", total_sum > 0 ? sum / total_sum : 0.0},
-                 {"certified", false}};
+    out.heuristic_parts.push_back({name, pixels, total_sum > 0 ? sum / total_sum : 0.0});
   }
   return out;
 }
@@ -146,129 +138,185 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   return out;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// What a render made: the image, and for the local pass its statistics and per-pixel channels.
+struct Rendered {
+  Image image;
+  std::optional<RenderStats> stats;
+  ChannelImage pixel_stats;
+};
+
+/// A progress bar's callback over the pixels of a camera's image.
+std::function<void(size_t)> pixel_progress(ProgressBar& bar, const CameraSpec& spec) {
+  const double total = static_cast<double>(spec.width) * spec.height;
+  return [&bar, total](size_t done) { bar.update(done / total, std::to_string(done) + " pixels"); };
+}
+
+/// The local pass (004 Fig. 6) or Monte Carlo over the solution's elements, split over the
+/// job's processes. Nothing on a process other than the root (its image holds only its tiles).
+std::optional<Rendered> render_from_solution(const RenderOptions& o, const MethodTraits& m,
+                                             const Inputs& inputs, const CameraSpec& spec,
+                                             const Job& job,
+                                             std::chrono::steady_clock::time_point start) {
+  const Scene& scene = inputs.scene;
+  const Solution& solution = *inputs.solution;
+  std::vector<EmittingFace> faces;
+  std::optional<RayCaster> caster;
+  std::optional<LocalPass> pass;
+  std::optional<MonteCarloGatherer> monte_carlo;
+  job.step([&] {
+    faces = faces_from_solution(scene, solution);
+    caster.emplace(scene);
+    if (!m.exact) {
+      monte_carlo.emplace(scene, faces);
+    } else {
+      LocalPassSettings settings = o.settings;
+      settings.mirror_culling = !o.no_mirror_culling;
+      pass.emplace(scene, faces, *m.local, settings);
+    }
+  });
+  const Camera camera(spec);
+  ProgressBar bar("render");
+  const auto progress = pixel_progress(bar, spec);
+  const IrradianceImage result =
+      pass ? render_local_pass(scene, *caster, camera, *pass, o.tolerance, progress, job)
+           : render_monte_carlo(scene, *caster, camera, *monte_carlo, o.samples, progress, job);
+  bar.finish();
+  if (!job.is_root()) return std::nullopt;
+  const int leaves = pass ? static_cast<int>(pass->octree().leaves().size()) : 0;
+  return Rendered{
+      result.radiosity,
+      local_pass_stats(o, result, static_cast<int>(faces.size()), leaves, seconds_since(start)),
+      pixel_channels(result, m.exact)};
+}
+
+/// The reference: the scene path-traced, split over the job's processes; nothing off the root.
+std::optional<Rendered> render_reference(const RenderOptions& o, const Scene& scene,
+                                         const CameraSpec& spec, const Job& job) {
+  std::optional<RayCaster> caster;
+  std::optional<PathTracer> tracer;
+  job.step([&] {
+    caster.emplace(scene);
+    tracer.emplace(scene);
+  });
+  ProgressBar bar("render");
+  Image image = render_path_traced(scene, *caster, Camera(spec), *tracer, o.samples,
+                                   pixel_progress(bar, spec), job)
+                    .radiosity;
+  bar.finish();
+  if (!job.is_root()) return std::nullopt;
+  return Rendered{std::move(image), std::nullopt, {}};
+}
+
+/// The plain renders, the root's alone: the solution's patches, the albedo, the facing ratio.
+Rendered render_plain(const RenderOptions& o, const Inputs& inputs, const CameraSpec& spec) {
+  const Camera camera(spec);
+  if (o.method == "patches")
+    return {render_patches(inputs.scene, *inputs.solution, camera, !o.no_ambient), {}, {}};
+  const RayCaster caster(inputs.scene);
+  return {
+      o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera), {}, {}};
+}
+
+/// The files a render writes: the image, its preview, and for the local pass the stats JSON and
+/// the per-pixel channels beside it (empty when not written).
+struct RenderPaths {
+  std::filesystem::path image, preview, stats, pixels;
+};
+
+RenderPaths render_paths(const RenderOptions& o, const MethodTraits& m) {
+  RenderPaths out;
+  out.image = o.output;
+  if (!o.no_preview) {
+    out.preview = o.preview.empty() ? std::filesystem::path(o.output).replace_extension(".png")
+                                    : std::filesystem::path(o.preview);
+  }
+  if (m.local) {
+    out.stats = o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
+                                : std::filesystem::path(o.stats);
+    out.pixels =
+        std::filesystem::path(out.stats).replace_extension().replace_extension(".pixels.exr");
+  }
+  return out;
+}
+
+/// Writes the image, its preview and, for the local pass, the stats JSON and the per-pixel
+/// channels, as a whole (CommitGroup: every file is written before any is replaced). Returns
+/// the paths written, for the summary line.
+std::string write_render_outputs(const RenderPaths& paths, Rendered& r, double exposure) {
+  CommitGroup group;
+  write_exr(paths.image, r.image);
+  std::string written = paths.image.string();
+  if (!paths.preview.empty()) {
+    write_png_preview(paths.preview, r.image, exposure);
+    written += ", " + paths.preview.string();
+  }
+  if (r.stats) {
+    write_exr_channels(paths.pixels, r.pixel_stats);
+    r.stats->pixels_file = paths.pixels.filename().string();
+    write_render_stats(paths.stats, *r.stats);
+    written += ", " + paths.stats.string() + ", " + paths.pixels.string();
+  }
+  group.commit();
+  return written;
+}
+
+/// The summary lines on stderr: what ran, the size, the time, the files; for the exact methods
+/// the faces gathered and the largest relative bound.
+void report_render(const RenderOptions& o, const MethodTraits& m, const CameraSpec& spec,
+                   const Rendered& r, const std::string& written, double seconds) {
+  std::cerr << "render: " << o.method
+            << (m.exact   ? " at tolerance " + std::to_string(o.tolerance)
+                : m.local ? " with " + std::to_string(o.samples) + " samples per pixel"
+                : m.name == "pathtrace" ? " with " + std::to_string(o.samples) + " paths per pixel"
+                                        : std::string())
+            << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote "
+            << written << "\n";
+  if (m.exact) {
+    std::cerr << "render: faces gathered exactly per pixel: mean " << r.stats->emitting_mean
+              << " of " << r.stats->faces << "; largest relative bound "
+              << r.stats->relative_bound_max << "\n";
+  }
+}
+
 void run_render(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   const ThreadLimit limit(o.threads);
-  // A method of the local pass (localpass/method.h), or one of the plain renders.
-  const std::optional<Method> method = parse_method(o.method);
-  const bool local = method.has_value();
-  const bool needs_solution = local || o.method == "patches";
-  if (needs_solution && o.solution.empty()) {
-    throw InputError("--method " + o.method +
-                     " needs --solution (a .vtp written by `radiosity solve`)");
-  }
-  if (o.method == "pathtrace" && !o.solution.empty())
-    throw InputError("--method pathtrace traces the scene itself: it takes no --solution");
+  const MethodTraits& m = method_traits(o.method);
+  check_solution_use(m, !o.solution.empty(), MethodCommand::render);
   // Over an MPI job the local pass and the path tracer split their tiles over the processes;
   // the plain renders are the root's alone.
-  const bool split = local || o.method == "pathtrace";
-  if (!split && !Job::world().is_root()) return;
-  const Job& job = split ? Job::world() : Job::alone();
+  if (!m.distributable && !Job::world().is_root()) return;
+  const Job& job = m.distributable ? Job::world() : Job::alone();
+  const bool needs_solution = m.solution == SolutionUse::required;
   const Inputs inputs = load_inputs(job, o.scene, needs_solution ? o.solution : std::string());
-  const Scene& scene = inputs.scene;
   CameraSpec spec;
-  job.step([&] { spec = camera_for(scene, o.scene, "render", o.width, o.height); });
-  const Camera camera(spec);
-
-  Image image;
-  nlohmann::json stats;
-  ChannelImage pixel_stats;  // local methods: per-pixel statistics, beside the stats JSON
-  if (needs_solution) {
-    const Solution& solution = *inputs.solution;
-    if (local) {
-      std::vector<EmittingFace> faces;
-      std::optional<RayCaster> caster;
-      std::optional<LocalPass> pass;
-      std::optional<MonteCarloGatherer> monte_carlo;
-      job.step([&] {
-        faces = faces_from_solution(scene, solution);
-        caster.emplace(scene);
-        if (!is_exact(*method)) {
-          monte_carlo.emplace(scene, faces);
-        } else {
-          LocalPassSettings settings = o.settings;
-          settings.mirror_culling = !o.no_mirror_culling;
-          pass.emplace(scene, faces, *method, settings);
-        }
-      });
-      ProgressBar bar("render");
-      const double total = static_cast<double>(spec.width) * spec.height;
-      const auto progress = [&](size_t done) {
-        bar.update(done / total, std::to_string(done) + " pixels");
-      };
-      const IrradianceImage result =
-          pass ? render_local_pass(scene, *caster, camera, *pass, o.tolerance, progress, job)
-               : render_monte_carlo(scene, *caster, camera, *monte_carlo, o.samples, progress, job);
-      bar.finish();
-      if (!job.is_root()) return;  // its image holds only the tiles it rendered
-      image = result.radiosity;
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      stats =
-          local_pass_stats(o, result, static_cast<int>(faces.size()),
-                           pass ? static_cast<int>(pass->octree().leaves().size()) : 0, seconds);
-      pixel_stats = pixel_channels(result, is_exact(*method));
-    } else {
-      image = render_patches(scene, solution, camera, !o.no_ambient);
+  const RenderPaths paths = render_paths(o, m);
+  job.step([&] {
+    spec = camera_for(inputs.scene, o.scene, "render", o.width, o.height);
+    // Refused now, not after the work: an output over an input, or two outputs in one file.
+    if (job.is_root()) {
+      check_outputs({{"the image (-o)", paths.image},
+                     {"the preview (--preview)", paths.preview},
+                     {"the stats JSON (--stats)", paths.stats},
+                     {"the per-pixel statistics", paths.pixels}});
     }
-  } else if (o.method == "pathtrace") {
-    std::optional<RayCaster> caster;
-    std::optional<PathTracer> tracer;
-    job.step([&] {
-      caster.emplace(scene);
-      tracer.emplace(scene);
-    });
-    ProgressBar bar("render");
-    const double total = static_cast<double>(spec.width) * spec.height;
-    image =
-        render_path_traced(
-            scene, *caster, camera, *tracer, o.samples,
-            [&](size_t done) { bar.update(done / total, std::to_string(done) + " pixels"); }, job)
-            .radiosity;
-    bar.finish();
-    if (!job.is_root()) return;
-  } else {
-    const RayCaster caster(scene);
-    image = o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera);
-  }
+  });
 
-  write_exr(o.output, image);
-  std::string written = o.output;
-  if (!o.no_preview) {
-    std::filesystem::path png = o.preview.empty()
-                                    ? std::filesystem::path(o.output).replace_extension(".png")
-                                    : std::filesystem::path(o.preview);
-    write_png_preview(png, image, o.exposure);
-    written += ", " + png.string();
+  std::optional<Rendered> rendered;
+  if (m.local) {
+    rendered = render_from_solution(o, m, inputs, spec, job, start);
+  } else if (m.solution == SolutionUse::refused) {
+    rendered = render_reference(o, inputs.scene, spec, job);
+  } else {
+    rendered = render_plain(o, inputs, spec);
   }
-  if (local) {
-    const std::filesystem::path path =
-        o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
-                        : std::filesystem::path(o.stats);
-    const std::filesystem::path pixels =
-        std::filesystem::path(path).replace_extension().replace_extension(".pixels.exr");
-    write_exr_channels(pixels, pixel_stats);
-    stats["pixels_file"] = pixels.filename().string();
-    write_text_file(path, [&](std::ostream& file) { file << stats.dump(2) << "\n"; });
-    written += ", " + path.string() + ", " + pixels.string();
-  }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const bool exact = local && is_exact(*method);
-  std::cerr << "render: " << o.method
-            << (exact   ? " at tolerance " + std::to_string(o.tolerance)
-                : local ? " with " + std::to_string(o.samples) + " samples per pixel"
-                : o.method == "pathtrace"
-                    ? " with " + std::to_string(o.samples) + " paths per pixel"
-                    : std::string())
-            << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote "
-            << written << "\n";
-  if (exact) {
-    std::cerr << "render: faces gathered exactly per pixel: mean "
-              << stats["emitting_per_pixel"]["mean"].get<double>() << " of "
-              << stats["faces"].get<int>() << "; largest relative bound "
-              << stats["bound"]["relative_max"].get<double>() << "\n";
-  }
+  if (!rendered) return;  // a process other than the root of an MPI job
+  const std::string written = write_render_outputs(paths, *rendered, o.exposure);
+  report_render(o, m, spec, *rendered, written, seconds_since(start));
 }
 
 }  // namespace
@@ -307,7 +355,7 @@ void add_render_command(CLI::App& app, Run& run) {
          "facing: albedo x |cos| to the eye, to see the geometry; "
          "pathtrace: the reference, B with H from --samples paths of the scene itself, every "
          "bounce sampled (no solution)")
-      ->check(CLI::IsMember(render_method_names()))
+      ->check(CLI::IsMember(method_names_for(MethodCommand::render)))
       ->capture_default_str();
   add_refraction_options(sub, &o->settings);
   add_glossy_options(sub, &o->settings);
@@ -316,9 +364,9 @@ void add_render_command(CLI::App& app, Run& run) {
       "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
       "fraction of its value (0: exact)");
   add_samples_option(sub, &o->samples, "pixel");
-  sub->add_option(
-      "--stats", o->stats,
-      "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with .stats.json)");
+  sub->add_option("--stats", o->stats,
+                  "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with "
+                  ".stats.json; -: stdout)");
   add_solution_option(sub, &o->solution);
   sub->add_flag("--no-ambient", o->no_ambient, "patches: leave out the display-only ambient term");
   sub->add_flag("--no-mirror-culling", o->no_mirror_culling,
@@ -330,7 +378,8 @@ void add_render_command(CLI::App& app, Run& run) {
   add_image_size_options(sub, &o->width, &o->height);
   sub->add_option("--exposure", o->exposure,
                   "Preview exposure in stops (PNG = linear * 2^exposure)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kFinite);
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_render(*o); }; });
 }

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/common.h"
+#include "formats/atomic_file.h"
 #include "formats/solution_io.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
@@ -31,6 +32,7 @@ std::string rgb(const Rgb& v) {
 void run_solve(const SolveOptions& o) {
   const ThreadLimit limit(o.threads);
   const Scene scene = load_scene_reporting(o.scene);
+  check_outputs({{"the solution (-o)", o.output}});  // before the work, not after it
   const RayCaster caster(scene);
   ProgressBar bar("solve");
   Solution solution = solve(caster, o.settings, [&](const SolveProgress& p) {
@@ -93,6 +95,7 @@ void add_solve_command(CLI::App& app, Run& run) {
   sub->add_option("--patch-size", s.patch_size,
                   "Patch edge length, as a fraction of the scene's diagonal")
       ->check(CLI::Range(1e-4, 1.0))
+      ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--element-levels", s.element_levels, "Initial elements per patch: 4^levels")
       ->check(CLI::Range(0, 6))
@@ -103,6 +106,7 @@ void add_solve_command(CLI::App& app, Run& run) {
                   "(after convergence) by more than this fraction of the local radiosity (0: no "
                   "adaptive refinement)")
       ->check(CLI::Range(0.0, 1e6))
+      ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--refine-passes", s.refine_passes,
                   "After convergence, passes that split elements differing from a neighbour by "
@@ -112,10 +116,12 @@ void add_solve_command(CLI::App& app, Run& run) {
   sub->add_option("--min-element-size", s.min_element_size,
                   "Smallest element edge, as a fraction of the diagonal")
       ->check(CLI::Range(1e-6, 1.0))
+      ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--unshot", s.unshot_fraction,
                   "Stop when the unshot power is below this fraction of the emitted")
       ->check(CLI::Range(1e-12, 0.999999))
+      ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--max-shots", s.max_shots, "Stop after this many shots in any case")
       ->check(CLI::Range(0, 100000000))

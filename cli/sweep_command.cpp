@@ -9,9 +9,9 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "cli/inputs.h"
+#include "cli/methods.h"
 #include "distributed/job.h"
 #include "experiments/sweep.h"
-#include "localpass/method.h"
 #include "radiosity/solution_faces.h"
 #include "viz/offscreen_display.h"
 #include "viz/sweep_figures.h"
@@ -32,8 +32,8 @@ void run_sweep_command(SweepOptions o) {
   const auto start = std::chrono::steady_clock::now();
   o.settings.methods.clear();
   for (const std::string& name : o.methods)
-    o.settings.methods.push_back(*parse_method(name));  // CLI11 checked
-  o.settings.reference_method = *parse_method(o.reference_method);
+    o.settings.methods.push_back(*method_traits(name).local);  // CLI11 checked
+  o.settings.reference_method = *method_traits(o.reference_method).local;
   // Over an MPI job every process renders tiles; the root alone draws and writes.
   const Job& job = Job::world();
   // The charts and heat maps need a display: fail now, not after the renders.
@@ -113,12 +113,13 @@ void add_sweep_command(CLI::App& app, Run& run) {
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   sub->add_option("--methods", o->methods, "Methods to run: hemisphere, vertex, montecarlo")
       ->delimiter(',')
-      ->check(CLI::IsMember(method_names()))
+      ->check(CLI::IsMember(method_names_for(MethodCommand::sweep)))
       ->capture_default_str();
   sub->add_option("--tolerances", o->settings.tolerances,
                   "hemisphere/vertex: tolerances to run, each in [0, 0.99] (0: exact)")
       ->delimiter(',')
       ->check(CLI::Range(0.0, 0.99))
+      ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--samples", o->settings.samples, "montecarlo: rays per pixel to run, each >= 1")
       ->delimiter(',')
@@ -126,7 +127,7 @@ void add_sweep_command(CLI::App& app, Run& run) {
       ->capture_default_str();
   sub->add_option("--reference-method", o->reference_method,
                   "Exact method whose tolerance-0 image is the reference")
-      ->check(CLI::IsMember(exact_method_names()))
+      ->check(CLI::IsMember(exact_method_names_for(MethodCommand::sweep)))
       ->capture_default_str();
   sub->add_option("--reference", o->settings.reference_file,
                   "An exact image of the same size from an earlier run (e.g. a sweep's "

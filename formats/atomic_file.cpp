@@ -1,71 +1,239 @@
 #include "formats/atomic_file.h"
 
-#include <signal.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <optional>
 #include <system_error>
 
 #include "scene/error.h"
+#include "scene/input_files.h"
 
 namespace rad {
-
-AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
-  const std::filesystem::path folder = target_.has_parent_path() ? target_.parent_path() : ".";
-  std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
-  if (ec)
-    throw Error(target_.string() + ": cannot create folder '" + folder.string() +
-                "': " + ec.message());
-  // ".name.tmpPID.ext": hidden, unique per process, and keeps the extension writers look at.
-  std::string name(1, '.');
-  name.append(target_.stem().string()).append(".tmp").append(std::to_string(::getpid()));
-  name.append(target_.extension().string());
-  temp_ = folder / name;
-}
-
-AtomicFile::~AtomicFile() {
-  if (!committed_) {
-    std::error_code ignored;
-    std::filesystem::remove(temp_, ignored);
-  }
-}
-
 namespace {
 
-/// Temporary files of this target left by processes that no longer run (killed while writing):
-/// ".name.tmpPID.ext" with PID not alive. Another live process's temporary is left alone.
+thread_local CommitGroup* current_group = nullptr;
+
+bool is_stdout(const std::filesystem::path& p) { return p == "-"; }
+
+/// `p` with every symlink followed, also a dangling one (to the file it would create); at most
+/// 40 links, as the kernel allows.
+std::filesystem::path follow_symlinks(std::filesystem::path p) {
+  for (int hops = 0; hops < 40; ++hops) {
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(p, ec))) break;
+    const std::filesystem::path link = std::filesystem::read_symlink(p, ec);
+    if (ec) break;
+    p = link.is_absolute() ? link : p.parent_path() / link;
+  }
+  std::error_code ec;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(p, ec);
+  return ec ? p : canonical;
+}
+
+/// True when `p` exists and is not a regular file or folder: a device, a FIFO, a socket.
+bool is_special(const std::filesystem::path& p) {
+  struct stat st {};
+  return ::stat(p.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
+/// Written through, never renamed over: stdout ("-"), what is not a regular file or folder (a
+/// device, a FIFO, a socket; symlinks followed, so /dev/stdout on a pipe), and anything under
+/// /dev or /proc that exists (/dev/stdout on a redirected file: the shell's file, not a rename
+/// over it).
+bool writes_through(const std::filesystem::path& target) {
+  if (is_stdout(target) || is_special(target)) return true;
+  const std::string name = target.lexically_normal().string();
+  std::error_code ec;
+  return (name.rfind("/dev/", 0) == 0 || name.rfind("/proc/", 0) == 0) &&
+         std::filesystem::exists(target, ec);
+}
+
+/// The permissions a new file gets (0666 less the umask), or an existing target's own.
+mode_t mode_for(const std::filesystem::path& target) {
+  struct stat st {};
+  if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) return st.st_mode & 07777;
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  return 0666 & ~mask;
+}
+
+/// ".NAME.tmp." then six characters then the extension: the temporaries of `target`.
+std::string temp_prefix(const std::filesystem::path& target) {
+  std::string prefix(1, '.');  // built by append: GCC 12 warns falsely on "." + string
+  prefix.append(target.stem().string()).append(".tmp.");
+  return prefix;
+}
+
+/// Removes temporaries of this target that no process holds (their writers were killed): a
+/// writer holds an exclusive lock on its temporary until it is renamed, and the kernel drops
+/// the lock with the process, so a temporary whose lock we can take is stale.
 void remove_stale_temporaries(const std::filesystem::path& target) {
   const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
-  std::string prefix(1, '.');  // built by append: GCC 12 warns falsely on "." + string
-  prefix.append(target.stem().string()).append(".tmp");
+  const std::string prefix = temp_prefix(target);
   const std::string extension = target.extension().string();
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.size() <= prefix.size() + extension.size() || name.rfind(prefix, 0) != 0 ||
+    if (name.size() != prefix.size() + 6 + extension.size() || name.rfind(prefix, 0) != 0 ||
         name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
       continue;
-    const std::string digits =
-        name.substr(prefix.size(), name.size() - prefix.size() - extension.size());
-    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) continue;
-    const long pid = std::stol(digits);
-    if (pid == ::getpid() || !(::kill(static_cast<pid_t>(pid), 0) == -1 && errno == ESRCH))
-      continue;
-    std::error_code ignored;
-    std::filesystem::remove(entry.path(), ignored);
+    const int fd = ::open(entry.path().c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) continue;
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && ::flock(fd, LOCK_EX | LOCK_NB) == 0) {
+      std::error_code ignored;
+      std::filesystem::remove(entry.path(), ignored);
+    }
+    ::close(fd);
   }
+}
+
+/// Copies the file `from` into the open descriptor `to`; false with errno set on failure.
+bool copy_into(const std::filesystem::path& from, int to) {
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) return false;
+  char buffer[1 << 16];
+  bool ok = true;
+  for (;;) {
+    const ssize_t n = ::read(in, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      ok = false;
+      break;
+    }
+    for (ssize_t done = 0; done < n;) {
+      const ssize_t w = ::write(to, buffer + done, static_cast<size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        ok = false;
+        break;
+      }
+      done += w;
+    }
+    if (!ok) break;
+  }
+  const int saved = errno;
+  ::close(in);
+  errno = saved;
+  return ok;
 }
 
 }  // namespace
 
-void AtomicFile::commit() {
+AtomicFile::AtomicFile(std::filesystem::path target) {
+  p_.target = std::move(target);
+  p_.through = writes_through(p_.target);
+  p_.resolved = p_.through ? p_.target : follow_symlinks(p_.target);
+  if (const std::optional<std::filesystem::path> input =
+          is_stdout(p_.target) ? std::nullopt : recorded_input(p_.resolved)) {
+    throw InputError(p_.target.string() + ": is the input " + input->string() +
+                     ", which this would overwrite; name another output");
+  }
+  // A special file's folder (/dev) is no place for a temporary: $TMPDIR is.
+  std::filesystem::path folder;
+  if (p_.through) {
+    const char* tmp = std::getenv("TMPDIR");
+    folder = tmp && *tmp ? tmp : "/tmp";
+  } else {
+    folder = p_.resolved.has_parent_path() ? p_.resolved.parent_path() : ".";
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec)
+      throw Error(p_.target.string() + ": cannot create folder '" + folder.string() +
+                  "': " + ec.message());
+  }
+  // ".NAME.tmp.XXXXXX.EXT": hidden, unique (mkstemps opens it O_EXCL), and keeps the extension.
+  const std::string extension = p_.resolved.extension().string();
+  std::string name = (folder / temp_prefix(p_.through ? "radiosity" : p_.resolved)).string();
+  name.append("XXXXXX").append(extension);
+  const int fd = ::mkstemps(name.data(), static_cast<int>(extension.size()));
+  if (fd < 0) {
+    throw Error(p_.target.string() + ": cannot write: cannot create a temporary in '" +
+                folder.string() + "': " + std::strerror(errno));
+  }
+  p_.temp = name;
+  p_.lock_fd = fd;
+  ::flock(fd, LOCK_EX);  // ours until renamed (remove_stale_temporaries)
+  if (!p_.through) ::fchmod(fd, mode_for(p_.resolved));
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) p_.discard();
+}
+
+void AtomicFile::Pending::discard() {
+  std::error_code ignored;
+  if (!temp.empty()) std::filesystem::remove(temp, ignored);
+  if (lock_fd >= 0) ::close(lock_fd);
+  lock_fd = -1;
+}
+
+void AtomicFile::Pending::finish() {
+  const auto fail = [&](const std::string& why) {
+    discard();
+    throw Error(target.string() + ": cannot write: " + why);
+  };
+  if (through) {
+    int out = 1;
+    if (is_stdout(target)) {
+      std::fflush(stdout);
+    } else {
+      out = ::open(resolved.c_str(), O_WRONLY | O_CLOEXEC);
+      if (out < 0) fail(std::strerror(errno));
+    }
+    const bool copied = copy_into(temp, out);
+    const int saved = errno;
+    if (out != 1) ::close(out);
+    if (!copied) fail(std::strerror(saved));
+    discard();
+    return;
+  }
   std::error_code ec;
-  std::filesystem::rename(temp_, target_, ec);
-  if (ec) throw Error(target_.string() + ": cannot write: " + ec.message());
+  std::filesystem::rename(temp, resolved, ec);
+  if (ec) fail(ec.message());
+  ::close(lock_fd);
+  lock_fd = -1;
+  remove_stale_temporaries(resolved);
+}
+
+void AtomicFile::commit() {
   committed_ = true;
-  remove_stale_temporaries(target_);
+  if (current_group) {
+    current_group->pending_.push_back(p_);  // the group owns the temporary now
+    return;
+  }
+  p_.finish();
+}
+
+CommitGroup::CommitGroup() : outer_(current_group) { current_group = this; }
+
+CommitGroup::~CommitGroup() {
+  current_group = outer_;
+  for (AtomicFile::Pending& p : pending_) p.discard();
+}
+
+void CommitGroup::commit() {
+  current_group = outer_;
+  // Every temporary is written: the renames need no space. On a failure the rest stay whole.
+  std::vector<AtomicFile::Pending> pending = std::move(pending_);
+  pending_.clear();
+  for (size_t i = 0; i < pending.size(); ++i) {
+    try {
+      pending[i].finish();
+    } catch (...) {
+      for (size_t j = i + 1; j < pending.size(); ++j) pending[j].discard();
+      throw;
+    }
+  }
 }
 
 void write_text_file(const std::filesystem::path& target,
@@ -74,9 +242,35 @@ void write_text_file(const std::filesystem::path& target,
   {
     std::ofstream file(out.temp_path());
     write(file);
-    if (!file.flush()) throw Error(target.string() + ": cannot write");
+    if (!file.flush()) throw Error(target.string() + ": cannot write: " + std::strerror(errno));
   }
   out.commit();
+}
+
+void check_outputs(const std::vector<std::pair<std::string, std::filesystem::path>>& outputs) {
+  struct Seen {
+    std::string what;
+    std::filesystem::path path;
+  };
+  std::vector<Seen> seen;
+  for (const auto& [what, path] : outputs) {
+    if (path.empty() || is_stdout(path)) continue;
+    const std::filesystem::path resolved = follow_symlinks(path);
+    if (const std::optional<std::filesystem::path> input = recorded_input(resolved)) {
+      throw InputError(path.string() + ": " + what + " is the input " + input->string() +
+                       ", which it would overwrite; name another output");
+    }
+    if (writes_through(path)) continue;
+    for (const Seen& s : seen) {
+      std::error_code ec;
+      const bool same = s.path == resolved || std::filesystem::equivalent(s.path, resolved, ec);
+      if (same) {
+        throw InputError(path.string() + ": " + what + " is also " + s.what +
+                         "; one would overwrite the other: name different files");
+      }
+    }
+    seen.push_back({what, resolved});
+  }
 }
 
 }  // namespace rad

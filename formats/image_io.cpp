@@ -17,6 +17,7 @@
 #include "formats/atomic_file.h"
 #include "formats/exr_guard.h"
 #include "scene/error.h"
+#include "scene/input_files.h"
 #include "scene/limits.h"
 
 namespace rad {
@@ -46,8 +47,7 @@ void write_exr_channels(const std::filesystem::path& file, const ChannelImage& i
 }
 
 ChannelImage read_exr_channels(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file))
-    throw InputError(file.string() + ": no such image file");
+  check_input_file(file, "image file");
   try {
     // OpenEXR's own limits, which it checks as it reads the header (Header::sanityCheck), before
     // it sizes its tables of chunk offsets from the data window.
@@ -100,7 +100,16 @@ Image read_exr(const std::filesystem::path& file) {
   const char* names[3] = {"R", "G", "B"};
   for (int c = 0; c < 3; ++c) {
     const auto it = channels.channels.find(names[c]);
-    if (it == channels.channels.end()) continue;  // a missing channel reads as 0
+    if (it == channels.channels.end()) {
+      // A Y-only image, or a render's per-pixel statistics: not an RGB image, whose missing
+      // channels would read as 0 (and compare would find nothing to compare).
+      std::string present;
+      for (const auto& [name, values] : channels.channels)
+        present += (present.empty() ? "" : ", ") + name;
+      throw InputError(file.string() + ": no " + names[c] +
+                       " channel: not an RGB image (its channels: " +
+                       (present.empty() ? "none" : present) + ")");
+    }
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i][c] = it->second[i];
   }
   return image;

@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <ostream>
 #include <sstream>
 
 #include "scene/error.h"
+#include "scene/input_files.h"
 
 namespace rad {
 namespace {
@@ -39,6 +41,7 @@ bool parse_number(const std::string& field, double* value) {
 }  // namespace
 
 std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
+  check_input_file(file, "points file");
   std::ifstream in(file);
   if (!in) throw InputError(file.string() + ": cannot open points file");
   std::vector<ProbePoint> points;
@@ -50,10 +53,11 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
     const std::string where = file.string() + ":" + std::to_string(number) + ": ";
     const std::vector<std::string> fields = split_fields(text);
     double v[6];
-    bool numeric = fields.size() == 6;
-    for (size_t i = 0; numeric && i < 6; ++i) numeric = parse_number(fields[i], &v[i]);
-    if (!numeric && first_row) {
-      first_row = false;  // a header
+    // A header has no number in it: a first row of 7 or 5 numbers is a malformed row, not one.
+    bool any_number = false;
+    for (const std::string& f : fields) any_number = any_number || parse_number(f, &v[0]);
+    if (!any_number && first_row) {
+      first_row = false;
       continue;
     }
     first_row = false;
@@ -68,8 +72,13 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
       if (!std::isfinite(v[i]))
         throw InputError(where + "field " + std::to_string(i + 1) + " is not finite");
     }
-    const Vec3 n(v[3], v[4], v[5]);
-    if (!(n.norm() > 0)) throw InputError(where + "the normal (nx, ny, nz) is zero");
+    Vec3 n(v[3], v[4], v[5]);
+    const double largest = n.cwiseAbs().maxCoeff();
+    if (!(largest > 0)) throw InputError(where + "the normal (nx, ny, nz) is zero");
+    // Components near the ends of the doubles (1e300, 1e-300): their squares overflow or
+    // vanish, and normalized() would give (0, 0, 0). Scaled by the largest first, they do not.
+    const double squared = n.squaredNorm();
+    if (!std::isfinite(squared) || squared < std::numeric_limits<double>::min()) n /= largest;
     points.push_back({Vec3(v[0], v[1], v[2]), n.normalized()});
   }
   if (points.empty()) throw InputError(file.string() + ": no points");

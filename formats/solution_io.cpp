@@ -26,6 +26,7 @@
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
+#include "scene/input_files.h"
 
 // JSON for Eigen's RGB triples, and field lists for the settings and statistics: one list
 // serves both writing and reading.
@@ -282,8 +283,7 @@ class FieldReader {
 }  // namespace
 
 Solution read_solution(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file))
-    throw InputError(file.string() + ": no such solution file");
+  check_input_file(file, "solution file");
   capture_vtk_messages();
   vtkNew<vtkXMLPolyDataReader> reader;
   if (!reader->CanReadFile(file.c_str())) {

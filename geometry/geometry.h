@@ -5,6 +5,7 @@
 ///  - clip.h: clipping a polygon to a half-space (Sutherland-Hodgman);
 ///  - lambert.h: Lambert's contour formula and the unoccluded point-to-polygon form factor;
 ///  - plane.h: facing tests (which side of a plane a point is on);
+///  - planar.h: the planar kernel (Newell, plane frames, 2D area, hull, triangulation, ...);
 ///  - box_tree.h: a hierarchy of axis-aligned boxes (2D and 3D), for queries and culling;
 ///  - tolerance.h: the scene's tolerance policy, one value for the gatherers and the culling;
 ///  - emitting_face.h: the faces the exact gatherers take;
@@ -19,6 +20,7 @@
 #include "geometry/exact_gatherer.h"
 #include "geometry/glossy_beam.h"
 #include "geometry/lambert.h"
+#include "geometry/planar.h"
 #include "geometry/plane.h"
 #include "geometry/refraction.h"
 #include "geometry/tolerance.h"

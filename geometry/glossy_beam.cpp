@@ -4,17 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/planar.h"
 #include "geometry/refraction.h"
+#include "geometry/tolerance.h"
 
 namespace rad {
 namespace {
-
-/// Angle between two non-zero vectors, accurate near 0 and pi.
-double angle_between(const Vec3& a, const Vec3& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
-double cross_2d(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Area of the 2D triangle (a, b, c).
 double area_2d(const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -179,7 +174,8 @@ Rgb GlossyBeam::irradiance(const Vec3& f, const Vec3& n) const {
   // than the lobe's peak density over the squared height above the triangle's plane (a bound
   // of the physics, which the facets pass near a focus).
   const double peak = gaussian_lobe(0, sigma_);
-  const double density = v.flux_area < 1e-12 * d2 ? peak / d2 : std::min(v.p_e, 1.0) / v.flux_area;
+  const double density =
+      v.flux_area < relative::kRounding * d2 ? peak / d2 : std::min(v.p_e, 1.0) / v.flux_area;
   const double height = face_normal_.dot(f - triangle_.vertex[0]);
   return flux_ * (cos_theta * std::min(density, peak / (height * height)));
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "geometry/tolerance.h"
+
 namespace rad::hemi {
 
 VisibleSurface::VisibleSurface() { nodes_.push_back(Node{}); }
@@ -38,7 +40,7 @@ void VisibleSurface::insert_at(int node, int occupant, const SphericalPolygon& p
   // Directions where F and Q are equally deep: c_F (n_Q . d) = c_Q (n_F . d).
   const Vec3 m = f.offset * q.normal - q.offset * f.normal;
   const double scale = std::abs(f.offset) + std::abs(q.offset);
-  if (!(m.norm() > 1e-12 * scale)) {
+  if (!(m.norm() > relative::kRounding * scale)) {
     // The same plane: equally deep everywhere. The lower id shows, whatever the order.
     if (f.id < q.id) carve(node, occupant, piece);
     return;
@@ -81,7 +83,7 @@ double VisibleSurface::visible_at(int node, const Occluder& f, const SphericalPo
   const Vec3 m = f.offset * q.normal - q.offset * f.normal;
   const double scale = std::abs(f.offset) + std::abs(q.offset);
   // The same plane: the lower id shows, and a polygon does not hide itself.
-  if (!(m.norm() > 1e-12 * scale)) return f.id <= q.id ? piece.form_factor(n) : 0;
+  if (!(m.norm() > relative::kRounding * scale)) return f.id <= q.id ? piece.form_factor(n) : 0;
   const auto [a, b] = piece.split(m.normalized());
   double sum = 0;
   for (const SphericalPolygon* part : {&a, &b}) {

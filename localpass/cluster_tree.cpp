@@ -5,6 +5,9 @@
 #include <limits>
 #include <map>
 
+#include "geometry/planar.h"
+#include "geometry/tolerance.h"
+
 namespace rad {
 
 /// One polygon's faces in 2D coordinates (u, v) of its plane, with (u, v, normal) right-handed,
@@ -22,49 +25,6 @@ struct ClusterTree::Flat {
 };
 
 namespace {
-
-double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-double polygon_area(const std::vector<Vec2>& p) {
-  double twice = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec2& a = p[i];
-    const Vec2& b = p[(i + 1) % p.size()];
-    twice += a.x() * b.y() - a.y() * b.x();
-  }
-  return 0.5 * std::abs(twice);
-}
-
-/// Indices (into `points`) of the convex hull, counter-clockwise, without collinear points
-/// (Andrew's monotone chain). Only points strictly inside a hull edge are dropped, so the hull
-/// holds every point.
-std::vector<int> convex_hull(const std::vector<Vec2>& points) {
-  std::vector<int> order(points.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::ranges::sort(order, [&](int a, int b) {
-    return points[a].x() != points[b].x() ? points[a].x() < points[b].x()
-                                          : points[a].y() < points[b].y();
-  });
-  order.erase(
-      std::unique(order.begin(), order.end(), [&](int a, int b) { return points[a] == points[b]; }),
-      order.end());
-  if (order.size() < 3) return order;
-  std::vector<int> hull(2 * order.size());
-  size_t k = 0;
-  for (const int i : order) {  // lower chain
-    while (k >= 2 && cross2(points[hull[k - 2]], points[hull[k - 1]], points[i]) <= 0) --k;
-    hull[k++] = i;
-  }
-  for (size_t j = order.size() - 1, lower = k + 1; j-- > 0;) {  // upper chain
-    const int i = order[j];
-    while (k >= lower && cross2(points[hull[k - 2]], points[hull[k - 1]], points[i]) <= 0) --k;
-    hull[k++] = i;
-  }
-  hull.resize(k - 1);
-  return hull;
-}
 
 /// The area centroid of a convex polygon, by its fan of triangles (the vertex mean if it has
 /// no area).
@@ -108,10 +68,10 @@ ClusterTree::ClusterTree(const std::vector<EmittingFace>& faces) {
         extent.extend(p.back());
       }
       flat.centroids[f] = sum / static_cast<double>(p.size());
-      flat.areas[f] = polygon_area(p);
+      flat.areas[f] = 0.5 * std::abs(signed_area_2d(p, Vec2::Zero()));
       flat.centers[f] = area_centroid(faces[f].vertices);
     }
-    flat.eps = 1e-9 * extent.sizes().norm();
+    flat.eps = relative::kMatch * extent.sizes().norm();
     roots_.push_back(build(flat, members));
   }
 }
@@ -151,9 +111,9 @@ int ClusterTree::build(const Flat& flat, std::vector<int> members) {
         c.outline.push_back(*corners[i]);
         hull_points.push_back(points[i]);
       }
-      const double outline_area = polygon_area(hull_points);
-      c.fills_outline = std::abs(outline_area - face_area) <= 1e-9 * outline_area;
-      c.gap_area = std::abs(outline_area - face_area) + 1e-12 * outline_area;
+      const double outline_area = 0.5 * std::abs(signed_area_2d(hull_points, Vec2::Zero()));
+      c.fills_outline = std::abs(outline_area - face_area) <= relative::kMatch * outline_area;
+      c.gap_area = std::abs(outline_area - face_area) + relative::kRounding * outline_area;
     }
     if (members.size() == 1) c.fills_outline = true;
     c.face_area = face_area;
@@ -204,7 +164,7 @@ int ClusterTree::build(const Flat& flat, std::vector<int> members) {
       for (const int f : members) {
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (const Vec2& q : flat.points[f]) {
-          const double s = (d.x() * (q - a).y() - d.y() * (q - a).x()) / length;
+          const double s = cross_2d(d, q - a) / length;
           lo = std::min(lo, s), hi = std::max(hi, s);
         }
         if (lo < -flat.eps && hi > flat.eps) {

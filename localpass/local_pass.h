@@ -159,8 +159,10 @@ class LocalPass {
   /// The faces' term plus `exact_part`, known exactly (point lights) the stopping rule counts.
   LocalPassResult gather_direct(const Vec3& x, const Vec3& n, double tolerance,
                                 const Rgb& exact_part = Rgb::Zero()) const;
+  /// The error-bounded sum over the cluster tree (004 Fig. 6), localpass/cluster_gather.cpp.
   LocalPassResult gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance,
                                      const Rgb& exact_part) const;
+  class ClusterGather;
   /// No culling: every face that can light x radiates in one gather, every face may hide it.
   LocalPassResult gather_plainly(const Vec3& x, const Vec3& n) const;
 

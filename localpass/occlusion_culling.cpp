@@ -6,6 +6,7 @@
 #include <ranges>
 
 #include "geometry/shaft.h"
+#include "geometry/tolerance.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -69,7 +70,7 @@ OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<Emittin
     for (size_t oj = oi + 1;
          oj < order.size() && polygons_[order[oj]].box.min().x() <= a.box.max().x() + pad_; ++oj) {
       PolygonData& b = polygons_[order[oj]];
-      if (std::abs(a.normal.dot(b.normal)) < 1 - 1e-12) continue;
+      if (std::abs(a.normal.dot(b.normal)) < 1 - relative::kRounding) continue;
       if (std::ranges::any_of(b.vertices, [&](const Vec3& v) {
             return std::abs(a.normal.dot(v) - a.offset) > pad_;
           })) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/planar.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -13,18 +14,6 @@ using Piece = std::vector<Vec2>;
 struct Segment {
   Vec2 a, b;
 };
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-bool is_convex(const Piece& p) {
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec2& a = p[i];
-    const Vec2& b = p[(i + 1) % p.size()];
-    const Vec2& c = p[(i + 2) % p.size()];
-    if (cross(b - a, c - b) < 0) return false;
-  }
-  return true;
-}
 
 /// Where polygon q meets the plane (origin o, unit normal n) and rises in front of it: the
 /// segment between the extreme points of the intersection (for a convex q, the intersection
@@ -69,9 +58,9 @@ double inside_length(const Segment& s, const Piece& piece, double pad) {
     const Vec2 e = piece[(i + 1) % piece.size()] - p;
     const double length = e.norm();
     if (!(length > 0)) continue;
-    // Signed distance inside the edge: cross(e, x - p) / |e| >= pad.
-    const double at_a = cross(e, s.a - p) / length - pad;
-    const double rate = cross(e, d) / length;
+    // Signed distance inside the edge: cross_2d(e, x - p) / |e| >= pad.
+    const double at_a = cross_2d(e, s.a - p) / length - pad;
+    const double rate = cross_2d(e, d) / length;
     if (rate == 0) {
       if (at_a < 0) return 0;
     } else if (rate > 0) {
@@ -89,7 +78,7 @@ double inside_length(const Segment& s, const Piece& piece, double pad) {
 std::vector<Piece> cut(const Piece& piece, const Segment& s, double pad) {
   const Vec2 d = (s.b - s.a).normalized();
   std::vector<double> side(piece.size());
-  for (size_t i = 0; i < piece.size(); ++i) side[i] = cross(d, piece[i] - s.a);
+  for (size_t i = 0; i < piece.size(); ++i) side[i] = cross_2d(d, piece[i] - s.a);
   std::vector<Piece> out;
   for (const double sign : {1.0, -1.0}) {
     Piece half;
@@ -114,7 +103,7 @@ Piece without_straight_corners(const Piece& piece, double pad) {
     const Vec2& b = piece[i];
     const Vec2& c = piece[(i + 1) % piece.size()];
     const double base = (c - a).norm();
-    if (base > 0 && std::abs(cross(c - a, b - a)) / base > pad) out.push_back(b);
+    if (base > 0 && std::abs(cross_2d(c - a, b - a)) / base > pad) out.push_back(b);
   }
   return out;
 }
@@ -175,9 +164,6 @@ std::vector<std::vector<Vec3>> contact_pieces(const Scene& scene, int index, int
   const Polygon& p = scene.polygons[index];
   const double pad = near ? near->pad() : scene.tolerance().pad;
   const PlaneFrame frame(p.vertices[0], p.normal);
-  const auto to_3d = [&](const Vec2& x) -> Vec3 {
-    return frame.origin + x.x() * frame.u + x.y() * frame.v;
-  };
   Piece outline;
   for (const Vec3& v : p.vertices) outline.push_back(frame.to_2d(v));
   std::vector<Piece> pieces;
@@ -234,7 +220,7 @@ std::vector<std::vector<Vec3>> contact_pieces(const Scene& scene, int index, int
   std::vector<std::vector<Vec3>> out;
   for (const Piece& piece : pieces) {
     std::vector<Vec3> corners;
-    for (const Vec2& x : without_straight_corners(piece, pad)) corners.push_back(to_3d(x));
+    for (const Vec2& x : without_straight_corners(piece, pad)) corners.push_back(frame.to_3d(x));
     out.push_back(std::move(corners));
   }
   return out;

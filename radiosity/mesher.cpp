@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/tolerance.h"
 #include "radiosity/contact_cuts.h"
 #include "scene/polygon.h"
 
@@ -20,7 +21,7 @@ bool is_convex_quad(const std::vector<Vec3>& v, const Vec3& normal) {
 }
 
 int divisions(double length, double size) {
-  return std::max(1, static_cast<int>(std::ceil(length / size - 1e-9)));
+  return std::max(1, static_cast<int>(std::ceil(length / size - relative::kMatch)));
 }
 
 Patch make_patch(int polygon, const Vec3& normal, std::vector<Vec3> corners) {

@@ -7,7 +7,9 @@
 #include <map>
 #include <unordered_map>
 
+#include "geometry/planar.h"
 #include "geometry/plane.h"
+#include "geometry/tolerance.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -239,7 +241,7 @@ Rgb interpolate_mean_value(const std::vector<Vec3>& polygon, const std::vector<R
     r[i] = d[i].norm();
     scale = std::max(scale, r[i]);
   }
-  const double eps = 1e-12 * scale;
+  const double eps = relative::kRounding * scale;
   for (size_t i = 0; i < n; ++i) {
     if (r[i] <= eps) return values[i];
   }
@@ -247,9 +249,9 @@ Rgb interpolate_mean_value(const std::vector<Vec3>& polygon, const std::vector<R
   std::vector<double> tan_half(n);
   for (size_t i = 0; i < n; ++i) {
     const size_t j = (i + 1) % n;
-    const double cross = d[i].x() * d[j].y() - d[i].y() * d[j].x();
+    const double cross = cross_2d(d[i], d[j]);
     const double dot = d[i].dot(d[j]);
-    if (std::abs(cross) <= 1e-12 * r[i] * r[j] && dot < 0) {
+    if (std::abs(cross) <= relative::kRounding * r[i] * r[j] && dot < 0) {
       // On edge (i, j): linear interpolation of its ends.
       const double t = r[i] / (r[i] + r[j]);
       return (1 - t) * values[i] + t * values[j];

@@ -8,6 +8,7 @@
 
 #include "geometry/lambert.h"
 #include "geometry/plane.h"
+#include "geometry/tolerance.h"
 #include "radiosity/random_stream.h"
 #include "scene/point_lights.h"
 #include "scene/polygon.h"
@@ -180,7 +181,8 @@ std::optional<RayCaster::Segment> Shooter::leg_segment(const Vec3& a, const Vec3
   const Vec3 d = b - a;
   const double distance = d.norm();
   if (!(distance > 2 * epsilon_)) return std::nullopt;
-  return RayCaster::Segment{{a, d / distance}, epsilon_, distance * (1 - 1e-6) - epsilon_};
+  return RayCaster::Segment{
+      {a, d / distance}, epsilon_, distance * (1 - relative::kFloat) - epsilon_};
 }
 
 /// What passes between two points.

@@ -6,17 +6,6 @@
 #include "scene/polygon_faces.h"
 
 namespace rad {
-namespace {
-
-/// Distance from p to segment ab.
-double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
-}  // namespace
 
 std::vector<EmittingFace> faces_from_solution(const Scene& scene, const Solution& solution) {
   const double tolerance = scene.tolerance().pad;
@@ -40,8 +29,8 @@ std::vector<EmittingFace> faces_from_solution(const Scene& scene, const Solution
       for (size_t j = 0; j < p.vertices.size() && !boundary; ++j) {
         const Vec3& pa = p.vertices[j];
         const Vec3& pb = p.vertices[(j + 1) % p.vertices.size()];
-        boundary =
-            segment_distance(a, pa, pb) <= tolerance && segment_distance(b, pa, pb) <= tolerance;
+        boundary = point_segment_distance(a, pa, pb) <= tolerance &&
+                   point_segment_distance(b, pa, pb) <= tolerance;
       }
       face.on_boundary.push_back(boundary);
     }

@@ -7,6 +7,7 @@
 
 #include "geometry/glossy_beam.h"
 #include "geometry/refraction.h"
+#include "geometry/tolerance.h"
 #include "scene/point_lights.h"
 #include "scene/polygon.h"
 #include "scene/polygon_faces.h"
@@ -88,7 +89,7 @@ Rgb PathTracer::straight_emission(const Vec3& p, const Vec3& normal, std::mt1993
     const Vec3 leg = z - origin;
     const double distance = leg.norm();
     const Rgb passed = caster_.transmittance({origin, leg / distance}, 1.5 * offset_,
-                                             distance * (1 - 1e-9) - offset_, offset_);
+                                             distance * (1 - relative::kMatch) - offset_, offset_);
     if (passed == Rgb::Zero()) continue;
     const double weight = 1 - cosine_weight(cos_p, e, r, cos_z);
     h += (weight * e.area * cos_p * cos_z / (std::numbers::pi * r2)) *

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "geometry/tolerance.h"
 #include "scene/error.h"
 
 namespace rad {
@@ -20,7 +21,7 @@ Camera::Camera(const CameraSpec& spec) : spec_(spec) {
   if (!(view.norm() > 0)) throw InputError("camera: eye and look_at coincide");
   forward_ = view.normalized();
   const Vec3 side = forward_.cross(spec.up);
-  if (!(side.norm() > 1e-9 * spec.up.norm())) {
+  if (!(side.norm() > relative::kMatch * spec.up.norm())) {
     throw InputError("camera: up is zero or parallel to the view direction");
   }
   right_ = side.normalized();

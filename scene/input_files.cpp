@@ -1,9 +1,14 @@
 #include "scene/input_files.h"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
+#include <vector>
 
 #include "scene/error.h"
 
@@ -30,7 +35,42 @@ uint64_t take_size(std::string_view in, size_t& at) {
   return n;
 }
 
+/// The inputs this process has read, by device and inode.
+struct RecordedInput {
+  dev_t device;
+  ino_t inode;
+  std::filesystem::path path;
+};
+std::mutex recorded_mutex;
+std::vector<RecordedInput> recorded;
+
 }  // namespace
+
+void check_input_file(const std::filesystem::path& file, const std::string& what) {
+  const std::string cannot = file.string() + ": cannot open " + what + ": ";
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) throw InputError(cannot + std::strerror(errno));
+  const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
+                     : S_ISFIFO(st.st_mode) ? "a FIFO"
+                     : S_ISCHR(st.st_mode)  ? "a character device"
+                     : S_ISBLK(st.st_mode)  ? "a block device"
+                     : S_ISSOCK(st.st_mode) ? "a socket"
+                                            : nullptr;
+  if (kind) throw InputError(cannot + kind + ", not a regular file");
+  const std::lock_guard lock(recorded_mutex);
+  for (const RecordedInput& r : recorded)
+    if (r.device == st.st_dev && r.inode == st.st_ino) return;
+  recorded.push_back({st.st_dev, st.st_ino, file});
+}
+
+std::optional<std::filesystem::path> recorded_input(const std::filesystem::path& file) {
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) return std::nullopt;
+  const std::lock_guard lock(recorded_mutex);
+  for (const RecordedInput& r : recorded)
+    if (r.device == st.st_dev && r.inode == st.st_ino) return r.path;
+  return std::nullopt;
+}
 
 const std::string* InputFiles::find(const std::filesystem::path& file) const {
   const auto it = files_.find(file.string());
@@ -42,6 +82,7 @@ void InputFiles::add(const std::filesystem::path& file, std::string bytes) {
 }
 
 const std::string& InputFiles::read(const std::filesystem::path& file, const std::string& what) {
+  check_input_file(file, what);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open " + what);
   std::ostringstream bytes;

@@ -6,10 +6,21 @@
 /// same scene.
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 
 namespace rad {
+
+/// Checks that `file` is a file a command can read whole: it exists and is a regular file (a
+/// FIFO would block forever, a folder is not a file, a device never ends), following symlinks.
+/// Then records it as an input of this process: no output may be written over it
+/// (formats/atomic_file.h). Throws InputError "FILE: cannot open WHAT: REASON", the reason the
+/// system's ("No such file or directory") or the kind of file ("a FIFO, not a regular file").
+void check_input_file(const std::filesystem::path& file, const std::string& what);
+
+/// The recorded input that is the same file (device and inode) as `file`, if any.
+std::optional<std::filesystem::path> recorded_input(const std::filesystem::path& file);
 
 class InputFiles {
  public:

@@ -32,4 +32,14 @@ inline constexpr double kImageFloorBytes = 1 << 20;
 /// allocates: points and cells up to 4 per element, array tuples up to 8).
 inline constexpr long long kSolutionElements = 5'000'000;
 
+/// A vertex coordinate's magnitude: beyond it, lengths and areas of the scene overflow (a
+/// polygon at +-1e200 read as "1 distinct vertex").
+inline constexpr double kCoordinate = 1e100;
+
+/// The power a scene's lights may emit in all, in W (per channel): the polygons' emission times
+/// their area and 4 pi times each point light's intensity. The Sun's is 4e26 W; at 1e100 the
+/// squares and sums the solver and the bounds take of it stay far from overflowing (emission
+/// 1e300 made infinite pixels; 1.7e308 stopped the solver after two shots claiming 0% unshot).
+inline constexpr double kPower = 1e100;
+
 }  // namespace rad::limits

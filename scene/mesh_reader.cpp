@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "scene/error.h"
+#include "scene/input_files.h"
 #include "scene/limits.h"
 #include "scene/mesh_formats.h"
 
@@ -20,6 +21,11 @@ std::string lower_extension(const std::filesystem::path& file) {
 
 /// The whole of a mesh file, within limits::kMeshFileBytes.
 std::string read_mesh_bytes(const std::filesystem::path& file, const std::string& where) {
+  try {
+    check_input_file(file, "mesh file");
+  } catch (const InputError& e) {
+    throw InputError(where + ": " + e.what());
+  }
   std::error_code error;
   std::ifstream in(file, std::ios::binary);
   if (!in.good() || !std::filesystem::is_regular_file(file, error)) {

@@ -4,6 +4,7 @@
 /// chain (specular/mirror_images.h); the solver shoots through them (radiosity/solver.cpp).
 #include <vector>
 
+#include "geometry/refraction.h"
 #include "geometry/vec.h"
 #include "scene/scene.h"
 
@@ -19,7 +20,7 @@ struct MirrorPiece {
 
   double height(const Vec3& p) const { return normal.dot(p) - offset; }
   Vec3 reflect(const Vec3& p) const { return p - 2 * height(p) * normal; }
-  Vec3 reflect_direction(const Vec3& d) const { return d - 2 * normal.dot(d) * normal; }
+  Vec3 reflect_direction(const Vec3& d) const { return rad::reflect(d, normal); }
   /// True when p (in the piece's plane) lies in its outline (its edges included).
   bool contains(const Vec3& p) const {
     const size_t k = outline.size();

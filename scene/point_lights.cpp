@@ -110,7 +110,7 @@ Rgb glossy_highlight(const Scene& scene, const RayCaster& caster, const Material
     const Vec3 w = to / r;
     const double cos_in = std::abs(n.dot(w));
     const Vec3 centre = reflects ? reflect(-w, shading) : Vec3(-w);
-    const double phi = std::atan2(out.cross(centre).norm(), out.dot(centre));
+    const double phi = angle_between(out, centre);
     const double lobe = gaussian_lobe(phi, m.gloss);
     if (!(lobe > 0)) continue;
     const Rgb through = caster.transmittance({origin, w}, 0.5 * offset, r - offset, offset);

@@ -6,20 +6,6 @@
 #include "scene/polygon.h"
 
 namespace rad {
-namespace {
-
-bool is_convex(const std::vector<Vec2>& flat) {
-  const double orientation = signed_area_2d(flat) > 0 ? 1 : -1;
-  const size_t n = flat.size();
-  for (size_t k = 0; k < n; ++k) {
-    const Vec2 e0 = flat[(k + 1) % n] - flat[k], e1 = flat[(k + 2) % n] - flat[(k + 1) % n];
-    if (orientation * (e0.x() * e1.y() - e0.y() * e1.x()) < 0) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 void orient_counter_clockwise(EmittingFace& face) {
   if (newell_vector(face.vertices).dot(face.normal) >= 0) return;
   const size_t n = face.vertices.size();

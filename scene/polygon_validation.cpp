@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "scene/error.h"
+#include "scene/limits.h"
 
 namespace rad {
 namespace {
@@ -41,6 +42,10 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
     if (!vertices[i].allFinite()) {
       throw InputError(where + ": vertex " + std::to_string(i) + " is not finite " +
                        format_point(vertices[i]));
+    }
+    if (!(vertices[i].cwiseAbs().maxCoeff() <= limits::kCoordinate)) {
+      throw InputError(where + ": vertex " + std::to_string(i) + " " + format_point(vertices[i]) +
+                       " lies beyond +-1e100, where its lengths and areas overflow");
     }
   }
 

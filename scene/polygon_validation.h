@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/tolerance.h"
 #include "scene/polygon.h"
 
 namespace rad {
@@ -10,17 +11,17 @@ namespace rad {
 /// Tolerances of the validation, each relative to the polygon's extent (bounding-box diagonal).
 struct PolygonTolerances {
   /// Consecutive vertices closer than this are one vertex (merged with a warning).
-  double duplicate_vertex = 1e-12;
+  double duplicate_vertex = relative::kRounding;
   /// A polygon whose area is below this times extent^2 has zero area (error).
-  double zero_area = 1e-12;
+  double zero_area = relative::kRounding;
   /// Vertices within this distance of the best-fit plane count as planar (float rounding in
   /// mesh files is ~6e-8).
-  double planar = 1e-6;
+  double planar = relative::kFloat;
   /// Up to this deviation the polygon is triangulated with a warning (the Cornell box's left
   /// wall is 3.2 mm off plane over 780 mm, ~2e-3); beyond it, it is an error.
   double non_planar_limit = 2e-2;
   /// Two non-adjacent edges closer than this are touching (self-intersection error).
-  double self_touch = 1e-9;
+  double self_touch = relative::kMatch;
 };
 
 /// Validates one polygon and returns it as one polygon, or as triangles when it is slightly

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "geometry/refraction.h"
+#include "geometry/tolerance.h"
 #include "scene/error.h"
 
 namespace rad {
@@ -117,7 +118,7 @@ std::optional<Hit> RayCaster::closest_hit(const Ray& ray, double t_min, double t
   // Recompute the distance in double against the polygon's plane; Embree's float t is only
   // ~1e-7 relative. Keep Embree's value when the ray grazes the plane.
   double t = rh.ray.tfar;
-  if (std::abs(cos_in) > 1e-9) {
+  if (std::abs(cos_in) > relative::kMatch) {
     const double t_plane = polygon.normal.dot(polygon.vertices.front() - ray.origin) / cos_in;
     if (std::isfinite(t_plane) && std::abs(t_plane - t) <= 1e-3 * std::max(1.0, std::abs(t))) {
       t = t_plane;

@@ -1,11 +1,12 @@
 #pragma once
 /// Module `scene` (rad_scene): the scene model (materials, planar polygons, an optional camera,
-/// and what loading noticed), scene files (scene_loader.h: JSON with OBJ/PLY/OFF/STL meshes,
-/// mesh_reader.h) and their validation, the camera, ray casting (Embree behind ray_caster.h),
-/// the polygons as gatherer faces (polygon_faces.h), the mirror pieces and their chains
-/// (mirror_pieces.h), whether a refracting object is a closed solid (closed_surface.h), and
-/// point lights (point_light.h) with what reaches a point straight from them and their glossy
-/// highlights (point_lights.h).
+/// and what loading noticed), scene files (scene_loader.h: JSON read by scene_json.h, with
+/// OBJ/PLY/OFF/STL meshes, mesh_reader.h) and their validation, the input files a command read
+/// (input_files.h: regular files only, recorded so no output overwrites them), the camera, ray
+/// casting (Embree behind ray_caster.h), the polygons as gatherer faces (polygon_faces.h), the
+/// mirror pieces and their chains (mirror_pieces.h), whether a refracting object is a closed solid
+/// (closed_surface.h), and point lights (point_light.h) with what reaches a point straight from
+/// them and their glossy highlights (point_lights.h).
 ///
 /// May use: geometry, Embree (in .cpp files only), nlohmann-json.
 #include <filesystem>

@@ -12,148 +12,18 @@
 
 #include "scene/closed_surface.h"
 #include "scene/error.h"
+#include "scene/input_files.h"
 #include "scene/limits.h"
 #include "scene/mesh_reader.h"
 #include "scene/polygon_validation.h"
+#include "scene/scene_json.h"
 
 namespace rad {
 namespace {
 
-using Json = nlohmann::json;
-
-/// Text markers for the non-standard literals NaN, Infinity and -Infinity (see
-/// quote_nonfinite_literals): they survive parsing as strings so the element can be named.
-constexpr const char* kNonFinitePrefix = "\x01nonfinite:";
-
-/// JSON has no NaN or Infinity, but Python's json.dump writes them; a user who generated a
-/// scene that way deserves a message naming the element, not a parse error at a byte offset.
-/// Outside strings, those bare literals become marker strings the readers below reject.
-std::string quote_nonfinite_literals(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  bool in_string = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      out += c;
-      if (c == '\\' && i + 1 < text.size()) {
-        out += text[++i];
-      } else if (c == '"') {
-        in_string = false;
-      }
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-      out += c;
-      continue;
-    }
-    bool replaced = false;
-    for (const char* literal : {"-Infinity", "Infinity", "NaN"}) {
-      const size_t len = std::char_traits<char>::length(literal);
-      if (text.compare(i, len, literal) == 0) {
-        out += std::string("\"\\u0001nonfinite:") + literal + "\"";
-        i += len - 1;
-        replaced = true;
-        break;
-      }
-    }
-    if (!replaced) out += c;
-  }
-  return out;
-}
-
-std::string line_column(const std::string& text, size_t byte) {
-  size_t line = 1, column = 1;
-  for (size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line, column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(column);
-}
-
-/// Reading JSON values with the element's path in every message.
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw InputError(file_ + ": " + where + ": " + what);
-  }
-  std::string at(const std::string& where) const { return file_ + ": " + where; }
-
-  void require_object(const Json& j, const std::string& where,
-                      const std::set<std::string>& allowed) const {
-    if (!j.is_object()) fail(where, "expected an object, got " + type_name(j));
-    for (const auto& [key, value] : j.items()) {
-      if (!allowed.count(key)) {
-        std::string list;
-        for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
-        fail(where, "unknown key \"" + key + "\" (allowed: " + list + ")");
-      }
-    }
-  }
-
-  double number(const Json& j, const std::string& where) const {
-    if (j.is_string()) {
-      const std::string s = j.get<std::string>();
-      if (s.rfind(kNonFinitePrefix, 0) == 0) {
-        fail(where,
-             "is not a finite number (" + s.substr(std::string(kNonFinitePrefix).size()) + ")");
-      }
-    }
-    if (!j.is_number()) fail(where, "expected a number, got " + type_name(j));
-    const double value = j.get<double>();
-    if (!std::isfinite(value)) fail(where, "is not a finite number");
-    return value;
-  }
-
-  int positive_int(const Json& j, const std::string& where) const {
-    if (!j.is_number_integer() || j.get<long long>() <= 0 || j.get<long long>() > 1 << 20) {
-      fail(where, "expected a positive integer (at most 1048576), got " + j.dump());
-    }
-    return j.get<int>();
-  }
-
-  std::string string(const Json& j, const std::string& where) const {
-    if (!j.is_string() || j.get<std::string>().rfind(kNonFinitePrefix, 0) == 0) {
-      fail(where, "expected a string, got " + type_name(j));
-    }
-    return j.get<std::string>();
-  }
-
-  Vec3 vec3(const Json& j, const std::string& where) const {
-    if (!j.is_array() || j.size() != 3) fail(where, "expected [x, y, z], got " + abbreviated(j));
-    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
-  }
-
-  /// An RGB triple, or one number for a grey.
-  Rgb rgb(const Json& j, const std::string& where) const {
-    if (j.is_number()) {
-      const double v = number(j, where);
-      return {v, v, v};
-    }
-    if (!j.is_array() || j.size() != 3) fail(where, "expected [r, g, b], got " + abbreviated(j));
-    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
-  }
-
- private:
-  static std::string type_name(const Json& j) {
-    if (j.is_string() && j.get<std::string>().rfind(kNonFinitePrefix, 0) == 0) {
-      return "a non-finite number";
-    }
-    return std::string(j.type_name()) + " " + abbreviated(j);
-  }
-  static std::string abbreviated(const Json& j) {
-    std::string text = j.dump();
-    return text.size() > 40 ? text.substr(0, 37) + "..." : text;
-  }
-
-  std::string file_;
-};
+using scene_json::Json;
+using scene_json::parse_json;
+using scene_json::Reader;
 
 /// The refraction keys of a material with "ior" (000 §4); transmittance 1 when omitted.
 Refraction read_refraction(const Reader& in, const std::string& where, const Json& j) {
@@ -352,64 +222,8 @@ CameraSpec read_camera(const Reader& in, const Json& j) {
   return spec;
 }
 
-/// The deepest nesting of arrays and objects outside strings, with the byte where it first
-/// exceeds `limit` (or npos). nlohmann's parser keeps its own stack, but what it builds is
-/// destroyed recursively: a file of 100,000 nested brackets would overflow the stack.
-size_t too_deep_at(const std::string& text, int limit) {
-  int depth = 0;
-  bool in_string = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') {
-        ++i;
-      } else if (c == '"') {
-        in_string = false;
-      }
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > limit) return i;
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-  return std::string::npos;
-}
-
-}  // namespace
-
-Scene parse_scene(const std::string& json_text, const std::filesystem::path& file,
-                  InputFiles* files) {
-  const Reader in(file.string());
-  if (const size_t at = too_deep_at(json_text, limits::kJsonDepth); at != std::string::npos) {
-    throw InputError(file.string() + ":" + line_column(json_text, at) +
-                     ": invalid JSON: nested deeper than " + std::to_string(limits::kJsonDepth) +
-                     " levels");
-  }
-  Json root;
-  try {
-    root = Json::parse(quote_nonfinite_literals(json_text));
-  } catch (const Json::parse_error& e) {
-    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line..."
-    std::string what = e.what();
-    const size_t colon = what.find("parse error");
-    what = colon == std::string::npos ? what : what.substr(colon);
-    throw InputError(file.string() + ":" + line_column(json_text, e.byte) +
-                     ": invalid JSON: " + what);
-  } catch (const Json::exception& e) {
-    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": the words only.
-    std::string what = e.what();
-    if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
-      what = what.substr(what.find("] ") + 2);
-    throw InputError(file.string() + ": invalid JSON: " + what);
-  }
-
-  Scene scene;
-  scene.path = file;
-  in.require_object(
-      root, "top level",
-      {"materials", "objects", "lights", "camera", "mirror_depth", "refraction_depth"});
+/// "mirror_depth" and "refraction_depth", each an integer from 0 to 8.
+void read_depths(const Reader& in, const Json& root, Scene& scene) {
   for (const auto& [key, depth, what] :
        {std::tuple{"mirror_depth", &scene.mirror_depth, "reflections followed"},
         {"refraction_depth", &scene.refraction_depth, "refracting interfaces crossed"}}) {
@@ -421,117 +235,182 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
     }
     *depth = value.get<int>();
   }
+}
 
-  // Materials
+/// The named materials into scene.materials; returns each name's index.
+std::map<std::string, int> read_materials(const Reader& in, const Json& root, Scene& scene) {
   std::map<std::string, int> material_index;
-  if (root.contains("materials")) {
-    const Json& materials = root["materials"];
-    if (!materials.is_object()) in.fail("materials", "expected an object of named materials");
-    for (const auto& [name, value] : materials.items()) {
-      material_index[name] = static_cast<int>(scene.materials.size());
-      scene.materials.push_back(read_material(in, name, value));
+  if (!root.contains("materials")) return material_index;
+  const Json& materials = root["materials"];
+  if (!materials.is_object()) in.fail("materials", "expected an object of named materials");
+  for (const auto& [name, value] : materials.items()) {
+    material_index[name] = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(read_material(in, name, value));
+  }
+  return material_index;
+}
+
+/// An object's inline "polygons": lists of [x, y, z] vertices, at most the vertex limit each.
+std::vector<std::vector<Vec3>> read_inline_polygons(const Reader& in, const Json& polygons,
+                                                    const std::string& where) {
+  if (!polygons.is_array()) in.fail(where + ".polygons", "expected a list of polygons");
+  std::vector<std::vector<Vec3>> faces;
+  for (size_t p = 0; p < polygons.size(); ++p) {
+    const std::string pw = where + " polygon " + std::to_string(p);
+    if (!polygons[p].is_array()) in.fail(pw, "expected a list of [x, y, z] vertices");
+    if (polygons[p].size() > static_cast<size_t>(limits::kPolygonVertices)) {
+      in.fail(pw, "has " + std::to_string(polygons[p].size()) + " vertices, more than " +
+                      std::to_string(limits::kPolygonVertices));
+    }
+    std::vector<Vec3> vertices;
+    for (size_t v = 0; v < polygons[p].size(); ++v) {
+      vertices.push_back(in.vec3(polygons[p][v], pw + " vertex " + std::to_string(v)));
+    }
+    faces.push_back(std::move(vertices));
+  }
+  return faces;
+}
+
+/// 000 §4 follows light into a polyhedron and out through another of its facets: a refracting
+/// object should be closed, with its fronts facing out. Warns otherwise.
+void check_refracting_closure(const Reader& in, const std::string& where, const SceneObject& object,
+                              Scene& scene) {
+  const SurfaceClosure closure =
+      surface_closure(scene.polygons, object.first_polygon, object.polygon_count);
+  if (closure.unpartnered_edges > 0) {
+    scene.warnings.push_back(
+        in.at(where) + ": refracting but not closed (" + std::to_string(closure.unpartnered_edges) +
+        " edges without a reversed partner); light that enters it may not leave");
+  } else if (!(closure.volume > 0)) {
+    scene.warnings.push_back(in.at(where) +
+                             ": refracting with its fronts facing in (the index is of "
+                             "the medium behind the front side)");
+  }
+}
+
+/// objects[i]: its polygons (inline or from a mesh file beside the scene file), validated, into
+/// scene.polygons, and the object into scene.objects.
+void read_object(const Reader& in, const Json& o, size_t i, const std::filesystem::path& folder,
+                 const std::map<std::string, int>& material_index, Scene& scene,
+                 InputFiles* files) {
+  std::string where = "objects[" + std::to_string(i) + "]";
+  in.require_object(o, where, {"name", "mesh", "polygons", "material", "smooth"});
+  SceneObject object;
+  if (o.contains("name")) {
+    object.name = in.string(o["name"], where + ".name");
+    where += " \"" + object.name + "\"";
+  }
+  if (o.contains("mesh") == o.contains("polygons")) {
+    in.fail(where, "needs exactly one of \"mesh\" or \"polygons\"");
+  }
+  if (!o.contains("material")) in.fail(where, "missing \"material\"");
+  const std::string material = in.string(o["material"], where + ".material");
+  const auto found = material_index.find(material);
+  if (found == material_index.end()) {
+    in.fail(where, "unknown material \"" + material + "\"");
+  }
+  object.material = found->second;
+  object.first_polygon = static_cast<int>(scene.polygons.size());
+  const int object_id = static_cast<int>(i);
+
+  std::vector<std::vector<Vec3>> faces;
+  std::string element;
+  if (o.contains("mesh")) {
+    object.mesh = in.string(o["mesh"], where + ".mesh");
+    where += " (" + object.mesh + ")";
+    faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings, files);
+    element = " face ";
+  } else {
+    faces = read_inline_polygons(in, o["polygons"], where);
+    element = " polygon ";
+  }
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const int index = static_cast<int>(f);
+    for (Polygon& p : make_polygons(std::move(faces[f]), in.at(where + element + std::to_string(f)),
+                                    object.material, object_id, index, scene.warnings)) {
+      scene.polygons.push_back(std::move(p));
     }
   }
+  if (static_cast<long long>(scene.polygons.size()) > limits::kPolygons) {
+    in.fail(where, "the scene has more than " + std::to_string(limits::kPolygons) + " polygons");
+  }
+  object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
+  if (o.contains("smooth")) {
+    if (!o["smooth"].is_boolean()) in.fail(where + ".smooth", "expected true or false");
+    if (o["smooth"].get<bool>()) {
+      if (!o.contains("mesh"))
+        in.fail(where, "\"smooth\" needs a \"mesh\" (its faces share vertices)");
+      smooth_normals(scene.polygons, object.first_polygon, object.polygon_count);
+    }
+  }
+  if (scene.materials[object.material].refracts())
+    check_refracting_closure(in, where, object, scene);
+  scene.objects.push_back(std::move(object));
+}
 
-  // Objects
+/// Refuses a scene whose light would overflow the arithmetic (limits::kPower), naming the first
+/// element whose power passes the limit, or the total when none alone does.
+void check_power(const Reader& in, const Scene& scene) {
+  const auto too_much = [](double watts) { return !(watts <= limits::kPower); };
+  std::string limit;
+  {
+    std::ostringstream text;
+    text << limits::kPower;
+    limit = text.str();
+  }
+  double total = 0;
+  for (size_t i = 0; i < scene.polygons.size(); ++i) {
+    const Polygon& p = scene.polygons[i];
+    const double watts = scene.materials[p.material].emission.maxCoeff() * p.area;
+    if (too_much(watts)) {
+      throw InputError(in.at(scene.describe_polygon(static_cast<int>(i))) + ": emits more than " +
+                       limit + " W (emission times area): the arithmetic would overflow");
+    }
+    total += std::max(0.0, watts);
+  }
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const double watts = 4 * std::numbers::pi * scene.lights[i].intensity.maxCoeff();
+    if (too_much(watts)) {
+      in.fail("lights[" + std::to_string(i) + "]",
+              "emits more than " + limit + " W (4 pi intensity): the arithmetic would overflow");
+    }
+    total += std::max(0.0, watts);
+  }
+  if (too_much(total)) {
+    in.fail("top level",
+            "the lights emit more than " + limit + " W in all: the arithmetic would overflow");
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& json_text, const std::filesystem::path& file,
+                  InputFiles* files) {
+  const Reader in(file.string());
+  const Json root = parse_json(json_text, file);
+  Scene scene;
+  scene.path = file;
+  in.require_object(
+      root, "top level",
+      {"materials", "objects", "lights", "camera", "mirror_depth", "refraction_depth"});
+  read_depths(in, root, scene);
+  const std::map<std::string, int> material_index = read_materials(in, root, scene);
   if (!root.contains("objects")) in.fail("top level", "missing \"objects\"");
   const Json& objects = root["objects"];
   if (!objects.is_array()) in.fail("objects", "expected a list of objects");
-  const std::filesystem::path folder = file.parent_path();
-  for (size_t i = 0; i < objects.size(); ++i) {
-    const Json& o = objects[i];
-    std::string where = "objects[" + std::to_string(i) + "]";
-    in.require_object(o, where, {"name", "mesh", "polygons", "material", "smooth"});
-    SceneObject object;
-    if (o.contains("name")) {
-      object.name = in.string(o["name"], where + ".name");
-      where += " \"" + object.name + "\"";
-    }
-    if (o.contains("mesh") == o.contains("polygons")) {
-      in.fail(where, "needs exactly one of \"mesh\" or \"polygons\"");
-    }
-    if (!o.contains("material")) in.fail(where, "missing \"material\"");
-    const std::string material = in.string(o["material"], where + ".material");
-    const auto found = material_index.find(material);
-    if (found == material_index.end()) {
-      in.fail(where, "unknown material \"" + material + "\"");
-    }
-    object.material = found->second;
-    object.first_polygon = static_cast<int>(scene.polygons.size());
-    const int object_id = static_cast<int>(i);
-
-    std::vector<std::vector<Vec3>> faces;
-    std::string element;
-    if (o.contains("mesh")) {
-      object.mesh = in.string(o["mesh"], where + ".mesh");
-      where += " (" + object.mesh + ")";
-      faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings, files);
-      element = " face ";
-    } else {
-      const Json& polygons = o["polygons"];
-      if (!polygons.is_array()) in.fail(where + ".polygons", "expected a list of polygons");
-      for (size_t p = 0; p < polygons.size(); ++p) {
-        const std::string pw = where + " polygon " + std::to_string(p);
-        if (!polygons[p].is_array()) in.fail(pw, "expected a list of [x, y, z] vertices");
-        if (polygons[p].size() > static_cast<size_t>(limits::kPolygonVertices)) {
-          in.fail(pw, "has " + std::to_string(polygons[p].size()) + " vertices, more than " +
-                          std::to_string(limits::kPolygonVertices));
-        }
-        std::vector<Vec3> vertices;
-        for (size_t v = 0; v < polygons[p].size(); ++v) {
-          vertices.push_back(in.vec3(polygons[p][v], pw + " vertex " + std::to_string(v)));
-        }
-        faces.push_back(std::move(vertices));
-      }
-      element = " polygon ";
-    }
-    for (size_t f = 0; f < faces.size(); ++f) {
-      const int index = static_cast<int>(f);
-      for (Polygon& p :
-           make_polygons(std::move(faces[f]), in.at(where + element + std::to_string(f)),
-                         object.material, object_id, index, scene.warnings)) {
-        scene.polygons.push_back(std::move(p));
-      }
-    }
-    if (static_cast<long long>(scene.polygons.size()) > limits::kPolygons) {
-      in.fail(where, "the scene has more than " + std::to_string(limits::kPolygons) + " polygons");
-    }
-    object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
-    if (o.contains("smooth")) {
-      if (!o["smooth"].is_boolean()) in.fail(where + ".smooth", "expected true or false");
-      if (o["smooth"].get<bool>()) {
-        if (!o.contains("mesh"))
-          in.fail(where, "\"smooth\" needs a \"mesh\" (its faces share vertices)");
-        smooth_normals(scene.polygons, object.first_polygon, object.polygon_count);
-      }
-    }
-    if (scene.materials[object.material].refracts()) {
-      // 000 §4 follows light into a polyhedron and out through another of its facets.
-      const SurfaceClosure closure =
-          surface_closure(scene.polygons, object.first_polygon, object.polygon_count);
-      if (closure.unpartnered_edges > 0) {
-        scene.warnings.push_back(
-            in.at(where) + ": refracting but not closed (" +
-            std::to_string(closure.unpartnered_edges) +
-            " edges without a reversed partner); light that enters it may not leave");
-      } else if (!(closure.volume > 0)) {
-        scene.warnings.push_back(in.at(where) +
-                                 ": refracting with its fronts facing in (the index is of "
-                                 "the medium behind the front side)");
-      }
-    }
-    scene.objects.push_back(std::move(object));
-  }
+  for (size_t i = 0; i < objects.size(); ++i)
+    read_object(in, objects[i], i, file.parent_path(), material_index, scene, files);
   if (scene.polygons.empty()) in.fail("objects", "the scene has no polygons");
-
   if (root.contains("lights")) scene.lights = read_lights(in, root["lights"]);
   if (root.contains("camera")) scene.camera = read_camera(in, root["camera"]);
+  check_power(in, scene);
   return scene;
 }
 
 Scene load_scene(const std::filesystem::path& file, InputFiles* files) {
   if (const std::string* recorded = files ? files->find(file) : nullptr)
     return parse_scene(*recorded, file, files);
+  check_input_file(file, "scene file");
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw InputError(file.string() + ": cannot open scene file");
   std::error_code error;

@@ -12,7 +12,10 @@ echo "that it is current. One executable, \`build/cli/radiosity\`, with subcomma
 echo "files or stdout, messages to stderr. Exit status: **0** success, **1** runtime error (bad"
 echo "input, I/O: one line naming the file and the element), **2** usage error. Outputs are written"
 echo "to a temporary file beside the target and renamed, so an existing file is never left"
-echo "half-written. What the files contain: [formats.md](formats.md)."
+echo "half-written; a render's files are replaced together or not at all. An output that is an"
+echo "input, or two outputs in one file, are refused before any work. A symlink is followed (the"
+echo "link kept); a device, a FIFO and \`-\` (stdout, for CSV and JSON) are written through. A"
+echo "failed write to stdout exits 1. What the files contain: [formats.md](formats.md)."
 echo
 echo '```text'
 "$exe" --help

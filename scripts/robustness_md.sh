@@ -80,7 +80,29 @@ driver, loaded by VTK's offscreen rendering, leaks from a module it unloads.
 
 Outputs are written to a temporary file beside the target and renamed over it
 (`formats/atomic_file.h`); the next successful write removes temporaries that killed processes
-left. `tests/cli/durability_test.cpp` kills large renders at a dozen moments of their run and
+left (a writer holds a lock on its temporary, which the kernel drops with the process).
+`tests/cli/output_safety_test.cpp` checks, each case reproduced on the code before the fix
+(issue 39):
+
+| case | what happens |
+|---|---|
+| an output that is an input (`solve s.json -o s.json`, `render -s s.vtp -o s.vtp`, a probe over its points, the same file by a hard link or a symlink) | refused before any work, by device and inode: "the solution (-o) is the input s.json, which it would overwrite"; the input kept |
+| two outputs in one file (`render -o out.png`, `--preview` or `--stats` equal to `-o`) | refused before any work: "the preview (--preview) is also the image (-o)" |
+| `-o link.exr`, a symlink (also a dangling one) | the file it names is written; the link stays a link |
+| `-o /dev/null`, a FIFO, `/dev/stdout`, `-` (CSV and JSON) | written through: the bytes copied into the device, the pipe or stdout; never a rename over it (as root, `/dev/null` used to become a regular file) |
+| stdout fails (`probe ... > /dev/full`, `info`, `-o -`) | exit 1, "cannot write to stdout: No space left on device" |
+| a render's files (image, preview, stats JSON, per-pixel EXR) and one cannot be written | every temporary is written first, then all are renamed (`CommitGroup`): the previous files stay, none half replaced |
+| a stale temporary of any name (`.r.tmp99999999999999999999.exr` used to stop every write with "unexpected error: stol") | left alone or removed; temporaries have unique names (`mkstemps`), so two containers sharing a folder never share one |
+| a FIFO, a folder or a device as scene, mesh, solution, points, image or stats file | refused at once: "cannot open scene file: a FIFO, not a regular file" (a FIFO used to block forever) |
+| a polygon of 100,000 vertices (inside the limits) | `info` in 0.4 s: the self-intersection check asks a box tree for each edge's neighbours (`geometry/planar.h`); the plain scan took over 60 s |
+| a NUL in a name; a name of a megabyte; coordinates of +-1e200; escape sequences in a name | the NUL shown as `\0` (it cut the message before the problem); the line cut in its middle, the problem at its end kept; "vertex 2 (1e+200, -1e+200, 0) lies beyond +-1e100" (it said "has 1 distinct vertices"); `info` prints `?` for control characters |
+| `--tolerance nan`, `--tolerances 0.1,nan`, `--exposure nan`, `--max nan`, `--floor nan` | usage error (exit 2), "not a finite number" |
+| `render -j 1` | the stats JSON says `"threads": 1` (it said the machine's cores) |
+| emission 1e300 or 1.7e308, a point light of intensity 1e308 | refused before solving, naming the element: "emits more than 1e+100 W (emission times area): the arithmetic would overflow" (`scene/limits.h`; they gave infinite pixels, a file `render` refused, or "0% unshot" after two shots) |
+| `compare` against a Y-only image or a `.pixels.exr`; a NaN or infinite pixel; a black reference | exit 1: "no R channel: not an RGB image (its channels: Y)", "pixel (1, 1) is not a finite number", "no pixel to compare" (they reported "pixels compared: 0, max relative error 0") |
+| a points CSV whose first row has 7 or 5 numbers; a normal (1e300, 1e300, 1e300) | the row is an error, not a header ("expected 6 fields"); the normal is scaled before it is normalised (it became (0, 0, 0) and E = 0) |
+
+ `tests/cli/durability_test.cpp` kills large renders at a dozen moments of their run and
 checks that the previous image is intact, that two processes writing one output leave one whole
 file, that solve, probe and every render method give byte-identical files for 1, 2 and 4
 threads and from run to run, and that no NaN or infinity reaches a solution, a probe CSV or an

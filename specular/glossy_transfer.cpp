@@ -58,10 +58,6 @@ std::vector<GlossyTriangle> split(const GlossyTriangle& t, int n) {
   return out;
 }
 
-double angle_between(const Vec3& a, const Vec3& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
-}
-
 }  // namespace
 
 GlossyTransfer::~GlossyTransfer() = default;

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "geometry/refraction.h"
+#include "geometry/tolerance.h"
 #include "scene/polygon.h"
 #include "scene/polygon_faces.h"
 
@@ -159,7 +160,8 @@ ChannelOptics channel_optics(const RefractionPath& path, const Vec3& x, int c,
     Vec3 at = j == 0 ? through : f.centroid;
     if (path.traced && j > 0) {
       const double along = direction.dot(f.normal);
-      const double t = std::abs(along) > 1e-12 ? (f.offset - f.normal.dot(from)) / along : -1;
+      const double t =
+          std::abs(along) > relative::kRounding ? (f.offset - f.normal.dot(from)) / along : -1;
       if (!(t > 0)) {  // the ray runs along the facet's plane or away from it
         o.weight = 0;
         return o;
@@ -199,7 +201,7 @@ PathOptics optics_of(const RefractionPath& path, const Vec3& x) {
   const Vec3 first = path.facets.front()->centroid - x;
   const double first_length = first.norm();
   if (!(first_length > 0 &&
-        std::abs(first.dot(path.facets.front()->normal)) / first_length > 1e-12)) {
+        std::abs(first.dot(path.facets.front()->normal)) / first_length > relative::kRounding)) {
     o.seen = false;
     o.weight = Rgb::Zero();
     return o;
@@ -347,7 +349,7 @@ std::vector<RefractingFacet> facet_pieces(const RefractingFacet& facet, const Ve
     double spread, size;
     RefractingFacet facet;
   };
-  const double smallest = 1e-6 * extent(facet.outline);
+  const double smallest = relative::kFloat * extent(facet.outline);
   std::vector<Piece> pieces{{spread(facet), extent(facet.outline), facet}};
   while (static_cast<int>(pieces.size()) < max_pieces) {
     auto widest =

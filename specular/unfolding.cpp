@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "geometry/clip.h"
+#include "geometry/tolerance.h"
 #include "scene/polygon.h"
 #include "scene/polygon_faces.h"
 
@@ -15,7 +16,8 @@ namespace {
 /// inverse transpose.
 Vec3 mapped_normal(const Eigen::Matrix3d& linear, const Vec3& normal) {
   const bool orthogonal =
-      (linear.transpose() * linear - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-12;
+      (linear.transpose() * linear - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <
+      relative::kRounding;
   if (orthogonal) return linear * normal;
   return (linear.inverse().transpose() * normal).normalized();
 }
@@ -44,28 +46,6 @@ Polygon polygon_of(const EmittingFace& face, int material, const Polygon& proven
   p.area = 0.5 * newell_vector(face.vertices).norm();
   p.material = material;
   return p;
-}
-
-/// Convex hull of 2D points (Andrew's monotone chain), counter-clockwise.
-std::vector<Vec2> convex_hull(std::vector<Vec2> points) {
-  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y();
-  });
-  const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-  };
-  std::vector<Vec2> hull(2 * points.size());
-  size_t k = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (size_t i = points.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], points[i - 1]) <= 0) --k;
-    hull[k++] = points[i - 1];
-  }
-  hull.resize(k > 1 ? k - 1 : k);
-  return hull;
 }
 
 /// True when some edge normal of either convex polygon separates them by more than `margin`.
@@ -108,7 +88,9 @@ bool may_show_through(const std::vector<Vec3>& outline, const Vec3& normal, cons
   if (signed_area_2d(aperture) < 0) std::reverse(aperture.begin(), aperture.end());
   double reach = extent(outline);
   for (const Vec3& p : points) reach = std::max(reach, (p - x).norm());
-  return !separated(convex_hull(projected), aperture, 1e-9 * reach);
+  std::vector<Vec2> hull;
+  for (const int i : convex_hull(projected)) hull.push_back(projected[i]);
+  return !separated(hull, aperture, relative::kMatch * reach);
 }
 
 std::optional<EmittingFace> clipped_to(const EmittingFace& face,
@@ -137,127 +119,158 @@ std::optional<EmittingFace> clipped_to(const EmittingFace& face,
   return out;
 }
 
-UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& faces,
-                          const std::vector<Aperture>& apertures, const std::vector<Leg>& legs,
-                          const Eigen::Matrix3d& receiver_linear, const Vec3& receiver_translation,
-                          double in_plane, const std::optional<Vec3>& crossing_from) {
-  UnfoldedScene out;
-  out.linear = receiver_linear;
-  out.translation = receiver_translation;
-  out.scene.path = scene.path;
-  out.scene.objects = scene.objects;
-  out.scene.camera = scene.camera;
-  out.scene.mirror_depth = 0;
-  out.scene.refraction_depth = 0;
-  // Materials: the scene's, their images' (no mirrors, no refraction among them), the frame's.
-  const int count = static_cast<int>(scene.materials.size());
-  out.scene.materials = scene.materials;
-  for (int i = 0; i < count; ++i) {
-    Material image = scene.materials[i];
-    image.name += " (image)";
-    image.specular = Rgb::Zero();
-    image.refraction.reset();
-    out.scene.materials.push_back(image);
-  }
-  const int frame_material = 2 * count;
-  out.scene.materials.push_back(Material{"aperture frame", Rgb::Zero(), Rgb::Zero()});
-  // A flattened face (a contraction to depth 0) has no area to radiate or hide anything.
-  const auto has_area = [](const EmittingFace& f) { return newell_vector(f.vertices).norm() > 0; };
-  const auto add = [&](EmittingFace face, int material, const Polygon& provenance) {
-    face.polygon = static_cast<int>(out.scene.polygons.size());
-    out.scene.polygons.push_back(polygon_of(face, material, provenance));
-    out.faces.push_back(std::move(face));
-  };
+namespace {
 
-  // A convex polygon clipped to a leg is one convex polygon of the unfolded scene, holding the
-  // clipped faces it holds (the local pass culls and clusters by polygon, so a polygon per face
-  // would cost it the square of the faces); a concave one is split into a polygon per face
-  // (its clip need not be simple).
-  std::vector<char> convex(scene.polygons.size(), 0);
-  {
-    std::vector<int> pieces_of(scene.polygons.size(), 0);
-    for (const EmittingFace& f : faces_from_polygons(scene)) ++pieces_of[f.polygon];
-    for (size_t p = 0; p < convex.size(); ++p) convex[p] = pieces_of[p] == 1;
+/// One unfolding (unfold_legs): its inputs, the scene it builds, and its steps.
+class Unfolding {
+ public:
+  Unfolding(const Scene& scene, const std::vector<EmittingFace>& faces,
+            const std::vector<Aperture>& apertures, const std::vector<Leg>& legs, double in_plane,
+            const std::optional<Vec3>& crossing_from)
+      : scene_(scene),
+        faces_(faces),
+        apertures_(apertures),
+        legs_(legs),
+        in_plane_(in_plane),
+        crossing_from_(crossing_from),
+        k_(static_cast<int>(apertures.size())),
+        count_(static_cast<int>(scene.materials.size())) {}
+
+  UnfoldedScene run(const Eigen::Matrix3d& receiver_linear, const Vec3& receiver_translation) {
+    out_.linear = receiver_linear;
+    out_.translation = receiver_translation;
+    copy_scene_settings_and_materials();
+    find_convex_polygons();
+    if (crossing_from_) find_far_sides_and_first_aperture();
+    add_lights();
+    for (int j = k_; j >= 0; --j) add_leg(j);
+    add_frames();
+    return std::move(out_);
   }
-  const int k = static_cast<int>(apertures.size());
-  // With a fixed receiver: the far side of each aperture's image plane, seen from it.
-  std::vector<HalfSpace> beyond_aperture;
-  if (crossing_from) {
-    for (int j = 0; j < k; ++j) {
-      const Leg& next = legs[j + 1];
-      HalfSpace plane{mapped_normal(next.linear, apertures[j].normal), 0};
+
+ private:
+  /// The scene's settings, its materials, their images' (no mirrors, no refraction among them:
+  /// images never reflect or refract) and the frames'.
+  void copy_scene_settings_and_materials() {
+    out_.scene.path = scene_.path;
+    out_.scene.objects = scene_.objects;
+    out_.scene.camera = scene_.camera;
+    out_.scene.mirror_depth = 0;
+    out_.scene.refraction_depth = 0;
+    out_.scene.materials = scene_.materials;
+    for (int i = 0; i < count_; ++i) {
+      Material image = scene_.materials[i];
+      image.name += " (image)";
+      image.specular = Rgb::Zero();
+      image.refraction.reset();
+      out_.scene.materials.push_back(image);
+    }
+    out_.scene.materials.push_back(Material{"aperture frame", Rgb::Zero(), Rgb::Zero()});
+  }
+  int frame_material() const { return 2 * count_; }
+
+  /// A convex polygon clipped to a leg is one convex polygon of the unfolded scene, holding the
+  /// clipped faces it holds (the local pass culls and clusters by polygon, so a polygon per
+  /// face would cost it the square of the faces); a concave one is split into a polygon per
+  /// face (its clip need not be simple).
+  void find_convex_polygons() {
+    convex_.assign(scene_.polygons.size(), 0);
+    std::vector<int> pieces_of(scene_.polygons.size(), 0);
+    for (const EmittingFace& f : faces_from_polygons(scene_)) ++pieces_of[f.polygon];
+    for (size_t p = 0; p < convex_.size(); ++p) convex_[p] = pieces_of[p] == 1;
+  }
+
+  /// With a fixed receiver: the far side of each aperture's image plane, seen from it; and the
+  /// first aperture's image, which every line that carries light passes: a face whose image the
+  /// receiver cannot see through that outline neither lights nor hides anything.
+  void find_far_sides_and_first_aperture() {
+    for (int j = 0; j < k_; ++j) {
+      const Leg& next = legs_[j + 1];
+      HalfSpace plane{mapped_normal(next.linear, apertures_[j].normal), 0};
       plane.offset =
-          plane.normal.dot(next.linear * apertures[j].outline.front() + next.translation);
-      if (plane.height(*crossing_from) > 0) plane = {-plane.normal, -plane.offset};
-      beyond_aperture.push_back(plane);
+          plane.normal.dot(next.linear * apertures_[j].outline.front() + next.translation);
+      if (plane.height(*crossing_from_) > 0) plane = {-plane.normal, -plane.offset};
+      beyond_aperture_.push_back(plane);
+    }
+    if (k_ == 0) return;
+    for (const Vec3& v : apertures_[0].outline)
+      first_outline_.push_back(legs_[1].linear * v + legs_[1].translation);
+    first_normal_ = mapped_normal(legs_[1].linear, apertures_[0].normal);
+  }
+
+  bool seen_through_first(const std::vector<Vec3>& image) const {
+    return first_outline_.empty() ||
+           may_show_through(first_outline_, first_normal_, *crossing_from_, image);
+  }
+
+  bool strictly_inside(const std::vector<HalfSpace>& sides, const Vec3& p) const {
+    return std::all_of(sides.begin(), sides.end(),
+                       [&](const HalfSpace& side) { return side.height(p) > in_plane_; });
+  }
+
+  /// Point lights radiate on the last leg only, mapped like its faces: a light seen in a
+  /// mirror is its image (000 §3, the image method, exact for a point). A mirror chain's local
+  /// pass over the unfolded scene decides their visibility through the black frames of the
+  /// apertures exactly; refraction images are gathered by their faces only and leave them out.
+  void add_lights() {
+    for (const PointLight& light : scene_.lights) {
+      if (!strictly_inside(legs_[k_].bounds, light.position)) continue;
+      PointLight image = light;
+      image.position = legs_[k_].linear * light.position + legs_[k_].translation;
+      if (strictly_inside(beyond_aperture_, image.position)) out_.scene.lights.push_back(image);
     }
   }
-  // With a fixed receiver, every line that carries light passes the first aperture: a face
-  // whose image it cannot see through that outline neither lights nor hides anything.
-  std::vector<Vec3> first_outline;
-  Vec3 first_normal = Vec3::UnitZ();
-  if (crossing_from && k > 0) {
-    for (const Vec3& v : apertures[0].outline)
-      first_outline.push_back(legs[1].linear * v + legs[1].translation);
-    first_normal = mapped_normal(legs[1].linear, apertures[0].normal);
+
+  /// A face of the unfolded scene, as a polygon of its own.
+  void add_face(EmittingFace face, int material, const Polygon& provenance) {
+    face.polygon = static_cast<int>(out_.scene.polygons.size());
+    out_.scene.polygons.push_back(polygon_of(face, material, provenance));
+    out_.faces.push_back(std::move(face));
   }
-  const auto seen_through_first = [&](const std::vector<Vec3>& image) {
-    return first_outline.empty() ||
-           may_show_through(first_outline, first_normal, *crossing_from, image);
-  };
-  // Point lights radiate on the last leg only, mapped like its faces: a light seen in a
-  // mirror is its image (000 §3, the image method, exact for a point). A mirror chain's local
-  // pass over the unfolded scene decides their visibility through the black frames of the
-  // apertures exactly; refraction images are gathered by their faces only and leave them out.
-  const auto strictly_inside = [&](const std::vector<HalfSpace>& sides, const Vec3& p) {
-    return std::all_of(sides.begin(), sides.end(),
-                       [&](const HalfSpace& side) { return side.height(p) > in_plane; });
-  };
-  for (const PointLight& light : scene.lights) {
-    if (!strictly_inside(legs[k].bounds, light.position)) continue;
-    PointLight image = light;
-    image.position = legs[k].linear * light.position + legs[k].translation;
-    if (strictly_inside(beyond_aperture, image.position)) out.scene.lights.push_back(image);
-  }
-  for (int j = k; j >= 0; --j) {
-    const Leg& leg = legs[j];
-    const bool last = j == k;
-    const std::vector<HalfSpace> crossed(beyond_aperture.begin(),
-                                         beyond_aperture.begin() + (crossing_from ? j : 0));
-    // The leg's copy of a face: clipped, mapped, clipped to beyond the apertures before it;
-    // black on the earlier legs. Empty when nothing is left.
+
+  /// A flattened face (a contraction to depth 0) has no area to radiate or hide anything.
+  static bool has_area(const EmittingFace& f) { return newell_vector(f.vertices).norm() > 0; }
+
+  /// Leg j's copies of the faces: each clipped to the leg, mapped, clipped to beyond the
+  /// apertures before it; black on the earlier legs.
+  void add_leg(int j) {
+    const Leg& leg = legs_[j];
+    const bool last = j == k_;
+    const std::vector<HalfSpace> crossed(beyond_aperture_.begin(),
+                                         beyond_aperture_.begin() + (crossing_from_ ? j : 0));
+    // The leg's copy of a face; empty when nothing is left.
     const auto leg_copy = [&](const EmittingFace& clipped) -> std::optional<EmittingFace> {
       std::optional<EmittingFace> image =
-          clipped_to(mapped(clipped, leg.linear, leg.translation), crossed, in_plane);
+          clipped_to(mapped(clipped, leg.linear, leg.translation), crossed, in_plane_);
       if (image && !last) image->exitance = Rgb::Zero();
       return image;
     };
-    std::vector<int> unfolded_polygon(scene.polygons.size(), -1);  // -1: not yet, -2: per face
+    std::vector<int> unfolded_polygon(scene_.polygons.size(), -1);  // -1: not yet, -2: per face
     std::vector<Vec3> whole_image;
-    for (const EmittingFace& f : faces) {
-      if (!first_outline.empty()) {
+    for (const EmittingFace& f : faces_) {
+      if (!first_outline_.empty()) {
         // The whole face's image first: its clip lies in it (cheaper than clipping them all).
         whole_image.clear();
         for (const Vec3& v : f.vertices) whole_image.push_back(leg.linear * v + leg.translation);
         if (!seen_through_first(whole_image)) continue;
       }
-      const std::optional<EmittingFace> clipped = clipped_to(f, leg.bounds, in_plane);
+      const std::optional<EmittingFace> clipped = clipped_to(f, leg.bounds, in_plane_);
       if (!clipped) continue;
-      const Polygon& provenance = scene.polygons[f.polygon];
-      const int material = provenance.material + (last ? 0 : count);
+      const Polygon& provenance = scene_.polygons[f.polygon];
+      const int material = provenance.material + (last ? 0 : count_);
       int& target = unfolded_polygon[f.polygon];
       if (target == -1) {
         target = -2;
-        if (convex[f.polygon]) {
+        if (convex_[f.polygon]) {
           EmittingFace outline;
           outline.vertices = provenance.vertices;
           outline.on_boundary.assign(provenance.vertices.size(), true);
           outline.normal = provenance.normal;
-          if (const auto whole = clipped_to(outline, leg.bounds, in_plane)) {
+          if (const auto whole = clipped_to(outline, leg.bounds, in_plane_)) {
             const std::optional<EmittingFace> image = leg_copy(*whole);
             if (image && has_area(*image)) {
-              target = static_cast<int>(out.scene.polygons.size());
-              out.scene.polygons.push_back(polygon_of(*image, material, provenance));
+              target = static_cast<int>(out_.scene.polygons.size());
+              out_.scene.polygons.push_back(polygon_of(*image, material, provenance));
             }
           }
         }
@@ -265,71 +278,97 @@ UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& f
       std::optional<EmittingFace> face = leg_copy(*clipped);
       if (!face || !has_area(*face) || !seen_through_first(face->vertices)) continue;
       if (target == -2) {
-        add(std::move(*face), material, provenance);
+        add_face(std::move(*face), material, provenance);
         continue;
       }
       face->polygon = target;
-      out.faces.push_back(std::move(*face));
+      out_.faces.push_back(std::move(*face));
     }
   }
 
-  // The frames: at aperture j, trapezoids from each outline edge out to a similar polygon that
-  // holds the disk of radius `reach` around the outline's centroid c. What a frame must cover
-  // lies in the convex hull of the receiver and the legs, which holds it.
-  const auto frame_outline = [&](int j) {
-    const Leg& beyond = legs[j + 1];
+  /// Aperture j's outline in the image of the leg beyond it, counter-clockwise about its
+  /// mapped normal.
+  std::vector<Vec3> frame_outline(int j) const {
+    const Leg& beyond = legs_[j + 1];
     std::vector<Vec3> o;
-    for (const Vec3& v : apertures[j].outline) o.push_back(beyond.linear * v + beyond.translation);
+    for (const Vec3& v : apertures_[j].outline) o.push_back(beyond.linear * v + beyond.translation);
     if (beyond.linear.determinant() < 0) std::reverse(o.begin(), o.end());
     return o;
-  };
-  Bounds box = out.scene.bounds();
-  for (int j = 0; j < k; ++j) {
-    for (const Vec3& v : frame_outline(j)) box.add(v);
   }
-  const Bounds scene_box = scene.bounds();  // receivers lie in it: their images in its image
-  for (int corner = 0; corner < 8; ++corner) {
-    const Vec3 p((corner & 1) ? scene_box.hi.x() : scene_box.lo.x(),
-                 (corner & 2) ? scene_box.hi.y() : scene_box.lo.y(),
-                 (corner & 4) ? scene_box.hi.z() : scene_box.lo.z());
-    box.add(out.receiver(p));
-  }
-  for (int j = 0; j < k; ++j) {
-    const Aperture& a = apertures[j];
-    const std::vector<Vec3> o = frame_outline(j);
-    const Vec3 normal = mapped_normal(legs[j + 1].linear, a.normal);
-    Vec3 c = Vec3::Zero();
-    for (const Vec3& v : o) c += v;
-    c /= static_cast<double>(o.size());
-    double reach = 0;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 p((corner & 1) ? box.hi.x() : box.lo.x(), (corner & 2) ? box.hi.y() : box.lo.y(),
-                   (corner & 4) ? box.hi.z() : box.lo.z());
-      reach = std::max(reach, (p - c).norm());
+
+  /// The frames: at aperture j, trapezoids from each outline edge out to a similar polygon that
+  /// holds the disk of radius `reach` around the outline's centroid c. What a frame must cover
+  /// lies in the convex hull of the receiver and the legs, which holds it.
+  void add_frames() {
+    Bounds box = out_.scene.bounds();
+    for (int j = 0; j < k_; ++j) {
+      for (const Vec3& v : frame_outline(j)) box.add(v);
     }
-    reach = 2 * reach + extent(o);  // margin: the frame's far edge is seen by nothing
-    double inradius = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < o.size(); ++i) {
-      const Vec3 e = (o[(i + 1) % o.size()] - o[i]).normalized();
-      const Vec3 r = c - o[i];
-      inradius = std::min(inradius, (r - r.dot(e) * e).norm());
-    }
-    const double scale = reach / inradius;
-    const Polygon& provenance = scene.polygons[a.polygon];
-    for (size_t i = 0; i < o.size(); ++i) {
-      const Vec3& p = o[i];
-      const Vec3& q = o[(i + 1) % o.size()];
-      const Vec3 far_p = c + scale * (p - c), far_q = c + scale * (q - c);
-      // q -> p -> far p -> far q is counter-clockwise about the normal (the outline is, and
-      // the trapezoid lies outside edge p -> q). Radial edges are inner edges of the frame.
-      EmittingFace piece;
-      piece.vertices = {q, p, far_p, far_q};
-      piece.on_boundary = {true, false, true, false};
-      piece.normal = normal;
-      add(std::move(piece), frame_material, provenance);
+    const Bounds scene_box = scene_.bounds();  // receivers lie in it: their images in its image
+    for (int corner = 0; corner < 8; ++corner) box.add(out_.receiver(corner_of(scene_box, corner)));
+    for (int j = 0; j < k_; ++j) {
+      const Aperture& a = apertures_[j];
+      const std::vector<Vec3> o = frame_outline(j);
+      const Vec3 normal = mapped_normal(legs_[j + 1].linear, a.normal);
+      Vec3 c = Vec3::Zero();
+      for (const Vec3& v : o) c += v;
+      c /= static_cast<double>(o.size());
+      double reach = 0;
+      for (int corner = 0; corner < 8; ++corner)
+        reach = std::max(reach, (corner_of(box, corner) - c).norm());
+      reach = 2 * reach + extent(o);  // margin: the frame's far edge is seen by nothing
+      double inradius = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < o.size(); ++i) {
+        const Vec3 e = (o[(i + 1) % o.size()] - o[i]).normalized();
+        const Vec3 r = c - o[i];
+        inradius = std::min(inradius, (r - r.dot(e) * e).norm());
+      }
+      const double scale = reach / inradius;
+      const Polygon& provenance = scene_.polygons[a.polygon];
+      for (size_t i = 0; i < o.size(); ++i) {
+        const Vec3& p = o[i];
+        const Vec3& q = o[(i + 1) % o.size()];
+        const Vec3 far_p = c + scale * (p - c), far_q = c + scale * (q - c);
+        // q -> p -> far p -> far q is counter-clockwise about the normal (the outline is, and
+        // the trapezoid lies outside edge p -> q). Radial edges are inner edges of the frame.
+        EmittingFace piece;
+        piece.vertices = {q, p, far_p, far_q};
+        piece.on_boundary = {true, false, true, false};
+        piece.normal = normal;
+        add_face(std::move(piece), frame_material(), provenance);
+      }
     }
   }
-  return out;
+
+  /// Corner `corner` (bits: x, y, z at the high end) of a box.
+  static Vec3 corner_of(const Bounds& box, int corner) {
+    return Vec3((corner & 1) ? box.hi.x() : box.lo.x(), (corner & 2) ? box.hi.y() : box.lo.y(),
+                (corner & 4) ? box.hi.z() : box.lo.z());
+  }
+
+  const Scene& scene_;
+  const std::vector<EmittingFace>& faces_;
+  const std::vector<Aperture>& apertures_;
+  const std::vector<Leg>& legs_;
+  const double in_plane_;
+  const std::optional<Vec3>& crossing_from_;
+  const int k_;      ///< Apertures; legs are k_ + 1.
+  const int count_;  ///< The scene's materials; their images follow them.
+  UnfoldedScene out_;
+  std::vector<char> convex_;                ///< Per scene polygon: one convex piece.
+  std::vector<HalfSpace> beyond_aperture_;  ///< With a receiver: far sides of the apertures.
+  std::vector<Vec3> first_outline_;         ///< With a receiver: the first aperture's image.
+  Vec3 first_normal_ = Vec3::UnitZ();
+};
+
+}  // namespace
+
+UnfoldedScene unfold_legs(const Scene& scene, const std::vector<EmittingFace>& faces,
+                          const std::vector<Aperture>& apertures, const std::vector<Leg>& legs,
+                          const Eigen::Matrix3d& receiver_linear, const Vec3& receiver_translation,
+                          double in_plane, const std::optional<Vec3>& crossing_from) {
+  return Unfolding(scene, faces, apertures, legs, in_plane, crossing_from)
+      .run(receiver_linear, receiver_translation);
 }
 
 }  // namespace rad

@@ -93,8 +93,8 @@ inline const std::vector<HostileInput>& hostile_inputs() {
       {"NaN in a point", "probe {d}/cornell-box/scene.json -s {s} --points {h}/nan.csv",
        "nan.csv:2", "not finite"},
       {"a line of 60,000 fields",
-       "probe {d}/cornell-box/scene.json -s {s} --points {h}/long_line.csv", "long_line.csv",
-       "no points"},
+       "probe {d}/cornell-box/scene.json -s {s} --points {h}/long_line.csv", "long_line.csv:1",
+       "expected 6 fields x,y,z,nx,ny,nz, got 60001"},
       {"missing points file", "probe {d}/cornell-box/scene.json -s {s} --points {h}/none.csv",
        "none.csv", "cannot open"},
       // Solution files
@@ -140,7 +140,8 @@ inline const std::vector<HostileInput>& hostile_inputs() {
       {"empty EXR", "compare {h}/empty.exr {h}/empty.exr", "empty.exr", "EXR"},
       {"PNG named .exr", "compare {h}/png_renamed.exr {h}/png_renamed.exr", "png_renamed.exr",
        "EXR"},
-      {"missing image", "compare {h}/none.exr {h}/none.exr", "none.exr", "no such image file"},
+      {"missing image", "compare {h}/none.exr {h}/none.exr", "none.exr",
+       "cannot open image file: No such file"},
       // Outputs
       {"output under a file",
        "render {d}/cornell-box/scene.json --method albedo -o {h}/empty.json/a.exr", "a.exr",

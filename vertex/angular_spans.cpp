@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include "geometry/tolerance.h"
 #include "vertex/vertex_formula.h"
 
 namespace rad {
@@ -30,8 +31,8 @@ struct Boundary {
 Vec3 equal_depth_plane(const SpanEntry& a, const SpanEntry& b) {
   const Vec3 m = a.offset * b.normal - b.offset * a.normal;
   const double length = m.norm();
-  return length > 1e-12 * (std::abs(a.offset) + std::abs(b.offset)) ? Vec3(m / length)
-                                                                    : Vec3::Zero();
+  return length > relative::kRounding * (std::abs(a.offset) + std::abs(b.offset)) ? Vec3(m / length)
+                                                                                  : Vec3::Zero();
 }
 
 /// k . (q, 1): where q lies relative to the image line of plane k (times |k_xy|), zero when

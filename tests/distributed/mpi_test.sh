@@ -111,7 +111,7 @@ echo previous >kept.exr
 mpi -n 3 "$RADIOSITY" render missing.json --solution sol.vtp -o kept.exr 2>missing.err
 status=$?
 [ $status -ne 0 ] || fail "a missing scene exited 0"
-expect_one_line missing.err '^radiosity: error: missing.json: cannot open scene file$' "missing scene"
+expect_one_line missing.err '^radiosity: error: missing.json: cannot open scene file: No such file or directory$' "missing scene"
 [ "$(cat kept.exr)" = previous ] || fail "a missing scene touched the output"
 
 # Process 2 cannot take the solution the root sent: its temporary folder does not exist.

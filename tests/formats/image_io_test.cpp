@@ -218,5 +218,41 @@ TEST(AtomicFile, CreatesMissingFolders) {
   EXPECT_TRUE(std::filesystem::exists(target));
 }
 
+TEST(AtomicFile, TemporariesAreUniqueAndKeepTheExtension) {
+  const auto target = temp_dir() / "r.exr";
+  AtomicFile a(target), b(target);
+  EXPECT_NE(a.temp_path(), b.temp_path());
+  EXPECT_EQ(a.temp_path().extension(), ".exr");
+  EXPECT_EQ(a.temp_path().parent_path(), target.parent_path());
+}
+
+TEST(CommitGroup, RenamesAllOrNone) {
+  const auto dir = temp_dir();
+  const auto read = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  std::ofstream(dir / "a.csv") << "old a";
+  std::ofstream(dir / "b.csv") << "old b";
+  const auto write_both = [&](bool fail_second) {
+    CommitGroup group;
+    write_text_file(dir / "a.csv", [](std::ostream& out) { out << "new a"; });
+    EXPECT_EQ(read(dir / "a.csv"), "old a");  // committed, but the group holds the rename
+    write_text_file(dir / "b.csv", [&](std::ostream& out) {
+      if (fail_second) throw Error("disk full");
+      out << "new b";
+    });
+    group.commit();
+  };
+  EXPECT_THROW(write_both(true), Error);
+  EXPECT_EQ(read(dir / "a.csv"), "old a");
+  EXPECT_EQ(read(dir / "b.csv"), "old b");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 2)
+      << "temp file left behind";
+  write_both(false);
+  EXPECT_EQ(read(dir / "a.csv"), "new a");
+  EXPECT_EQ(read(dir / "b.csv"), "new b");
+}
+
 }  // namespace
 }  // namespace rad

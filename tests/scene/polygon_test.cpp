@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
 
 namespace rad {
@@ -99,6 +101,66 @@ TEST(Polygon, TriangulatesPolygonWithCollinearVertices) {
   double min_signed = 0;
   EXPECT_NEAR(triangulation_area(p, tris, &min_signed), 2.0, 1e-15);
   EXPECT_GE(min_signed, 0);
+}
+
+/// The first pair (i, j), i < j, of non-adjacent edges that come within `tolerance` (distance
+/// of segments by their end points: an independent, quadratic reference; adjacent edges are
+/// left to the fold-back cases of FindsSelfIntersections).
+std::optional<std::pair<int, int>> first_meeting_pair(const std::vector<Vec2>& p, double tol) {
+  const int n = static_cast<int>(p.size());
+  const auto point_segment = [](const Vec2& x, const Vec2& a, const Vec2& b) {
+    const Vec2 ab = b - a;
+    const double t = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    return (a + t * ab - x).norm();
+  };
+  const auto side = [](const Vec2& a, const Vec2& b, const Vec2& x) {
+    const double s = (b - a).x() * (x - a).y() - (b - a).y() * (x - a).x();
+    return (s > 0) - (s < 0);
+  };
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;
+      const Vec2 &a = p[i], &b = p[(i + 1) % n], &c = p[j], &d = p[(j + 1) % n];
+      const bool cross = side(a, b, c) * side(a, b, d) < 0 && side(c, d, a) * side(c, d, b) < 0;
+      const double gap = std::min({point_segment(a, c, d), point_segment(b, c, d),
+                                   point_segment(c, a, b), point_segment(d, a, b)});
+      if (cross || gap <= tol) return std::pair{i, j};
+    }
+  }
+  return std::nullopt;
+}
+
+TEST(Polygon, SelfIntersectionByTheTreeIsTheFirstPairOfAPlainScan) {
+  // Seeded random walks (many crossings), jittered circles (few or none) and circles with one
+  // vertex pulled across: the pair found is the plain scan's first, wherever it lies.
+  std::mt19937_64 rng(39);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int found = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 4 + trial % 60;
+    std::vector<Vec2> p;
+    if (trial % 3 == 0) {
+      for (int i = 0; i < n; ++i) p.emplace_back(u(rng), u(rng));
+    } else {
+      p = regular_polygon(n);
+      for (Vec2& v : p) v *= 1 + 0.02 * u(rng);
+      if (trial % 3 == 2) p[trial % n] = Vec2(u(rng), u(rng)) * 1.5;
+    }
+    const double tol = 1e-9;
+    const auto tree = find_self_intersection(p, tol);
+    const auto plain = first_meeting_pair(p, tol);
+    // The tree also reports neighbours folding back; the plain scan does not look at them.
+    if (tree && (tree->second == tree->first + 1 || (tree->first == 0 && tree->second == n - 1)))
+      continue;
+    ASSERT_EQ(tree.has_value(), plain.has_value()) << "trial " << trial;
+    if (plain) {
+      EXPECT_EQ(*tree, *plain) << "trial " << trial;
+    }
+    found += plain.has_value();
+  }
+  EXPECT_GT(found, 50);  // the trials do cross
+  // 100,000 vertices, simple: the tree's query cost, not the square (the plain scan took 60 s).
+  EXPECT_FALSE(find_self_intersection(regular_polygon(100000), 1e-9));
 }
 
 TEST(Polygon, FindsSelfIntersections) {
