@@ -20,6 +20,9 @@ using namespace rad::test::cli;
 const fs::path kRoot = RAD_SOURCE_DIR;
 const std::string kCornell = quoted(kRoot / "data/cornell-box/scene.json");
 const std::string kPoints = quoted(kRoot / "data/cornell-box/probe-points.csv");
+/// A coarse solve (a second, where the default takes fifteen; ten times that under the
+/// sanitizers): these tests need a solution file, not a good one.
+const std::string kCoarse = " --element-levels 0 --refine-passes 0 --max-shots 20";
 const std::string kAlbedo = "render " + kCornell + " --method albedo --width 16 --height 12";
 
 /// The exit status of `radiosity ARGS` run by the shell with `redirect` (e.g. "> /dev/full").
@@ -72,7 +75,7 @@ TEST(OutputSafety, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
   EXPECT_EQ(slurp(scene), before);
   // A render over its own solution.
   const fs::path solution = dir / "s.vtp";
-  ASSERT_EQ(run("solve " + quoted(scene) + " -o " + quoted(solution)).exit_code, 0);
+  ASSERT_EQ(run("solve " + quoted(scene) + kCoarse + " -o " + quoted(solution)).exit_code, 0);
   const std::string solved = slurp(solution);
   expect_one_line_error(run("render " + quoted(scene) + " -s " + quoted(solution) +
                             " --width 8 --height 6 -o " + quoted(solution)),
@@ -140,7 +143,7 @@ TEST(OutputSafety, AFailedWriteToStdoutExitsOne) {
 TEST(OutputSafety, ARenderReplacesItsFilesAsAWholeOrNotAtAll) {
   const fs::path dir = scratch();
   const fs::path solution = dir / "s.vtp";
-  ASSERT_EQ(run("solve " + kCornell + " -o " + quoted(solution)).exit_code, 0);
+  ASSERT_EQ(run("solve " + kCornell + kCoarse + " -o " + quoted(solution)).exit_code, 0);
   const std::string render = "render " + kCornell + " -s " + quoted(solution) +
                              " --method hemisphere --tolerance 0.5 --width 8 --height 6 -o " +
                              quoted(dir / "r.exr");
@@ -211,7 +214,7 @@ TEST(HonestOutputs, NanOptionsAreRefusedAndTheStatsSayTheThreadsUsed) {
                 " --tolerances 0.1,nan")
                 .exit_code,
             2);
-  ASSERT_EQ(run("solve " + kCornell + " -o " + quoted(solution)).exit_code, 0);
+  ASSERT_EQ(run("solve " + kCornell + kCoarse + " -o " + quoted(solution)).exit_code, 0);
   const Result r = run("render " + kCornell + " -s " + quoted(solution) +
                        " --tolerance 0.5 --width 8 --height 6 -j 1 -o " + quoted(dir / "r.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
