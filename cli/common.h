@@ -15,6 +15,10 @@
 
 namespace rad::cli {
 
+/// A byte a terminal would act on rather than show (C0 controls, ESC among them, and DEL):
+/// text read from a user's file never reaches stderr or stdout with one.
+inline bool is_control_byte(char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }
+
 /// Refuses "nan", "inf" and their kin for a number option: they pass CLI11's ranges (every
 /// comparison with NaN is false) and would run as a wrong setting. No text in --help.
 extern const CLI::Validator kFinite;

@@ -3,11 +3,11 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <utility>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "experiments/error_map.h"
+#include "formats/atomic_file.h"
 #include "formats/image_io.h"
 #include "scene/error.h"
 #include "viz/error_heat_map.h"
@@ -25,19 +25,17 @@ struct CompareOptions {
 void run_compare(const CompareOptions& o) {
   const Image image = read_exr(o.image);
   const Image reference = read_exr(o.reference);
+  std::filesystem::path png;
+  if (!o.map.empty() && !o.no_png)
+    png = o.png.empty() ? std::filesystem::path(o.map).replace_extension(".png")
+                        : std::filesystem::path(o.png);
+  // -o map.png would write the EXR and then the heat map into one file; refused before the work.
+  check_outputs({{"the error map (-o)", o.map}, {"the heat map (--png)", png}});
   if (image.width != reference.width || image.height != reference.height) {
     throw InputError(o.image + ": " + std::to_string(image.width) + "x" +
                      std::to_string(image.height) + " pixels, but the reference " + o.reference +
                      " has " + std::to_string(reference.width) + "x" +
                      std::to_string(reference.height));
-  }
-  // A NaN or an infinity compares as nothing (every comparison with NaN is false): refuse it.
-  for (const auto& [file, picture] : {std::pair{&o.image, &image}, {&o.reference, &reference}}) {
-    for (size_t i = 0; i < picture->pixels.size(); ++i) {
-      if (picture->pixels[i].allFinite()) continue;
-      throw InputError(*file + ": pixel (" + std::to_string(i % picture->width) + ", " +
-                       std::to_string(i / picture->width) + ") is not a finite number");
-    }
   }
   const ErrorMap map = relative_error_map(image, reference, o.floor);
   if (map.stats.pixels == 0) {
@@ -52,10 +50,7 @@ void run_compare(const CompareOptions& o) {
             << "\nmean relative error: " << map.stats.mean
             << "\nRMS relative error: " << map.stats.rms << "\n";
   if (o.map.empty()) return;
-  std::filesystem::path png;
-  if (!o.no_png)
-    png = o.png.empty() ? std::filesystem::path(o.map).replace_extension(".png")
-                        : std::filesystem::path(o.png);
+  CommitGroup group;  // the map and its heat map replace the old ones together
   write_error_map_exr(o.map, map);
   if (!png.empty()) {
     write_error_heat_map(png, map,
@@ -63,6 +58,7 @@ void run_compare(const CompareOptions& o) {
                              " against " + std::filesystem::path(o.reference).filename().string(),
                          o.max);
   }
+  group.commit();
   std::cerr << "compare: wrote " << o.map << (png.empty() ? "" : ", " + png.string()) << "\n";
 }
 

@@ -1,4 +1,5 @@
 // `radiosity info SCENE`: what a scene holds, without computing anything.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -110,8 +111,7 @@ void run_info(const InfoOptions& options) {
     const Material& mat = scene.materials[m];
     // A name is the file's: its escape sequences must not reach the terminal.
     std::string name = mat.name;
-    for (char& c : name)
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    std::replace_if(name.begin(), name.end(), is_control_byte, '?');
     std::cout << "  " << std::left << std::setw(12) << name << std::right << " reflectance "
               << triple(mat.reflectance) << "  emission " << triple(mat.emission) << "  ";
     // The paper-000 keys only where they are set, so opaque scenes read as before.

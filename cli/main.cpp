@@ -31,7 +31,7 @@ std::string one_line(const std::string& message) {
   constexpr size_t kHead = 400, kTail = 600;
   std::string out;
   for (const char c : message) {
-    const bool control = static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    const bool control = rad::cli::is_control_byte(c);
     if (control && (out.empty() || out.back() == ' ')) continue;
     out += control ? ' ' : c;
   }

@@ -18,15 +18,17 @@ bool MethodTraits::offered_by(MethodCommand command) const {
 
 const std::vector<MethodTraits>& all_methods() {
   using enum SolutionUse;
-  // name, local, exact, solution, direct without one, distributable, render, probe, sweep
+  using enum MethodKind;
+  // name, kind, local, exact, solution, direct without one, distributable, render, probe, sweep
   static const std::vector<MethodTraits> methods{
-      {"hemisphere", Method::hemisphere, true, required, true, true, true, true, true},
-      {"vertex", Method::vertex, true, required, true, true, true, true, true},
-      {"montecarlo", Method::montecarlo, false, required, false, true, true, true, true},
-      {"patches", std::nullopt, false, required, false, false, true, false, false},
-      {"albedo", std::nullopt, false, unused, false, false, true, false, false},
-      {"facing", std::nullopt, false, unused, false, false, true, false, false},
-      {"pathtrace", std::nullopt, false, refused, false, true, true, true, false},
+      {"hemisphere", local_pass, Method::hemisphere, true, required, true, true, true, true, true},
+      {"vertex", local_pass, Method::vertex, true, required, true, true, true, true, true},
+      {"montecarlo", local_pass, Method::montecarlo, false, required, false, true, true, true,
+       true},
+      {"patches", patches, std::nullopt, false, required, false, false, true, false, false},
+      {"albedo", albedo, std::nullopt, false, unused, false, false, true, false, false},
+      {"facing", facing, std::nullopt, false, unused, false, false, true, false, false},
+      {"pathtrace", path_tracer, std::nullopt, false, refused, false, true, true, true, false},
   };
   return methods;
 }

@@ -22,8 +22,18 @@ enum class SolutionUse {
   unused,    ///< it shows the scene's materials only (albedo, facing)
 };
 
+/// What computes a method's values: the one thing commands dispatch on (never its name).
+enum class MethodKind {
+  local_pass,   ///< B = E + rho H with H gathered from a solution (localpass/method.h's Method)
+  path_tracer,  ///< the reference: the scene itself path-traced (reference/path_tracer.h)
+  patches,      ///< the solution's element radiosities, Gouraud-interpolated
+  albedo,       ///< primary rays: reflectance, emitters their emission
+  facing,       ///< albedo x |cos| to the eye
+};
+
 struct MethodTraits {
   std::string_view name;
+  MethodKind kind = MethodKind::local_pass;
   std::optional<Method> local;  ///< The local pass's method, for hemisphere, vertex, montecarlo.
   bool exact = false;           ///< A certified bound on every value (hemisphere, vertex).
   SolutionUse solution = SolutionUse::unused;

@@ -131,7 +131,7 @@ std::function<void(size_t)> point_gather(const ProbeOptions& o, const MethodTrai
                                          ProbeColumns& out) {
   const Scene& scene = inputs.scene;
   const bool refracts = !out.refracted.empty(), glossy = !out.glossy.empty();
-  if (m.solution == SolutionUse::refused) {
+  if (m.kind == MethodKind::path_tracer) {
     g.path_tracer.emplace(scene, !o.no_interface_reflections);
     return [&o, &points, &g, &out](size_t i) {
       const PathTraceEstimate e =
@@ -257,7 +257,7 @@ void write_probe_output(const ProbeOptions& o, const std::vector<ProbePoint>& po
 
 void run_probe(const ProbeOptions& o) {
   const MethodTraits& m = method_traits(o.method);
-  if (o.target_error > 0 && m.solution != SolutionUse::refused)
+  if (o.target_error > 0 && m.kind != MethodKind::path_tracer)
     throw InputError("--target-error is for --method pathtrace");
   check_solution_use(m, !o.solution.empty(), MethodCommand::probe);
   const auto start = std::chrono::steady_clock::now();
@@ -272,7 +272,7 @@ void run_probe(const ProbeOptions& o) {
     if (job.is_root()) check_outputs({{"the output (-o)", o.output}});
   });
   const bool refracts = any_material(scene, &Material::refracts) && scene.refraction_depth > 0;
-  ProbeColumns columns(points.size(), m.solution == SolutionUse::refused, refracts,
+  ProbeColumns columns(points.size(), m.kind == MethodKind::path_tracer, refracts,
                        any_material(scene, &Material::is_glossy));
   ProbeGatherers gatherers;
   std::function<void(size_t)> gather;

@@ -212,13 +212,16 @@ std::optional<Rendered> render_reference(const RenderOptions& o, const Scene& sc
 }
 
 /// The plain renders, the root's alone: the solution's patches, the albedo, the facing ratio.
-Rendered render_plain(const RenderOptions& o, const Inputs& inputs, const CameraSpec& spec) {
+Rendered render_plain(const RenderOptions& o, const MethodTraits& m, const Inputs& inputs,
+                      const CameraSpec& spec) {
   const Camera camera(spec);
-  if (o.method == "patches")
+  if (m.kind == MethodKind::patches)
     return {render_patches(inputs.scene, *inputs.solution, camera, !o.no_ambient), {}, {}};
   const RayCaster caster(inputs.scene);
   return {
-      o.method == "facing" ? render_facing(caster, camera) : render_albedo(caster, camera), {}, {}};
+      m.kind == MethodKind::facing ? render_facing(caster, camera) : render_albedo(caster, camera),
+      {},
+      {}};
 }
 
 /// The files a render writes: the image, its preview, and for the local pass the stats JSON and
@@ -234,7 +237,7 @@ RenderPaths render_paths(const RenderOptions& o, const MethodTraits& m) {
     out.preview = o.preview.empty() ? std::filesystem::path(o.output).replace_extension(".png")
                                     : std::filesystem::path(o.preview);
   }
-  if (m.local) {
+  if (m.kind == MethodKind::local_pass) {
     out.stats = o.stats.empty() ? std::filesystem::path(o.output).replace_extension(".stats.json")
                                 : std::filesystem::path(o.stats);
     out.pixels =
@@ -269,10 +272,12 @@ std::string write_render_outputs(const RenderPaths& paths, Rendered& r, double e
 void report_render(const RenderOptions& o, const MethodTraits& m, const CameraSpec& spec,
                    const Rendered& r, const std::string& written, double seconds) {
   std::cerr << "render: " << o.method
-            << (m.exact   ? " at tolerance " + std::to_string(o.tolerance)
-                : m.local ? " with " + std::to_string(o.samples) + " samples per pixel"
-                : m.name == "pathtrace" ? " with " + std::to_string(o.samples) + " paths per pixel"
-                                        : std::string())
+            << (m.exact ? " at tolerance " + std::to_string(o.tolerance)
+                : m.kind == MethodKind::local_pass
+                    ? " with " + std::to_string(o.samples) + " samples per pixel"
+                : m.kind == MethodKind::path_tracer
+                    ? " with " + std::to_string(o.samples) + " paths per pixel"
+                    : std::string())
             << " " << spec.width << "x" << spec.height << " in " << seconds << " s; wrote "
             << written << "\n";
   if (m.exact) {
@@ -307,12 +312,12 @@ void run_render(const RenderOptions& o) {
   });
 
   std::optional<Rendered> rendered;
-  if (m.local) {
+  if (m.kind == MethodKind::local_pass) {
     rendered = render_from_solution(o, m, inputs, spec, job, start);
-  } else if (m.solution == SolutionUse::refused) {
+  } else if (m.kind == MethodKind::path_tracer) {
     rendered = render_reference(o, inputs.scene, spec, job);
   } else {
-    rendered = render_plain(o, inputs, spec);
+    rendered = render_plain(o, m, inputs, spec);
   }
   if (!rendered) return;  // a process other than the root of an MPI job
   const std::string written = write_render_outputs(paths, *rendered, o.exposure);

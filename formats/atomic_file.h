@@ -28,9 +28,9 @@ class AtomicFile {
   /// A new file of its own (made with a unique name, O_EXCL: two processes, even in containers
   /// sharing a folder, never share one), with the target's extension (some writers look at it):
   /// beside the target, or in $TMPDIR for a special file or stdout.
-  const std::filesystem::path& temp_path() const { return temp_; }
+  const std::filesystem::path& temp_path() const { return p_.temp; }
   /// The path as named (for messages).
-  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& target() const { return p_.target; }
   /// Renames the temporary file onto the target (atomic on one file system: a reader, or a
   /// process killed at any moment, sees the old file or the new one whole; of two processes
   /// writing one target, the last rename wins), or copies it into a special file or stdout.
@@ -52,8 +52,6 @@ class AtomicFile {
 
  private:
   Pending p_;
-  const std::filesystem::path& temp_ = p_.temp;
-  const std::filesystem::path& target_ = p_.target;
   bool committed_ = false;
 };
 

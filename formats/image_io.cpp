@@ -112,6 +112,13 @@ Image read_exr(const std::filesystem::path& file) {
     }
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i][c] = it->second[i];
   }
+  // An image to compare or to measure against: a NaN or an infinity would compare as nothing
+  // (every comparison with NaN is false). Renders never write one.
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (image.pixels[i].allFinite()) continue;
+    throw InputError(file.string() + ": pixel (" + std::to_string(i % image.width) + ", " +
+                     std::to_string(i / image.width) + ") is not a finite number");
+  }
   return image;
 }
 

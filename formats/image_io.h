@@ -12,8 +12,9 @@ namespace rad {
 /// Writes linear float RGB (channels R, G, B, ZIP compression) atomically. Throws Error.
 void write_exr(const std::filesystem::path& file, const Image& image);
 
-/// Reads the R, G, B channels of an OpenEXR file (missing channels read as 0). Throws
-/// InputError naming the file when it is missing or not an OpenEXR file.
+/// Reads the R, G, B channels of an OpenEXR file. Throws InputError naming the file when it is
+/// missing, not an OpenEXR file, lacks one of R, G, B (a Y-only image, a render's per-pixel
+/// statistics), or holds a pixel that is not a finite number.
 Image read_exr(const std::filesystem::path& file);
 
 /// Named float channels of one size (per-pixel statistics, say), rows from the top.

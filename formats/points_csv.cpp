@@ -55,7 +55,8 @@ std::vector<ProbePoint> read_points_csv(const std::filesystem::path& file) {
     double v[6];
     // A header has no number in it: a first row of 7 or 5 numbers is a malformed row, not one.
     bool any_number = false;
-    for (const std::string& f : fields) any_number = any_number || parse_number(f, &v[0]);
+    double ignored = 0;
+    for (const std::string& f : fields) any_number = any_number || parse_number(f, &ignored);
     if (!any_number && first_row) {
       first_row = false;
       continue;

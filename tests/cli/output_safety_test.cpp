@@ -240,6 +240,11 @@ TEST(HonestOutputs, CompareRefusesWhatItCannotCompare) {
                         "no pixel to compare");
   expect_one_line_error(run("compare " + quoted(dir / "nan.exr") + " " + grey_exr),
                         "pixel (1, 1) is not a finite number");
+  // -o map.png: the error map and then its heat map went to one file.
+  expect_one_line_error(
+      run("compare " + grey_exr + " " + grey_exr + " -o " + quoted(dir / "map.png")),
+      "is also the error map (-o)");
+  EXPECT_FALSE(fs::exists(dir / "map.png"));
 }
 
 TEST(HonestOutputs, PointsRowsAreNeverDroppedAndHugeNormalsStayNormals) {
