@@ -8,20 +8,33 @@ MAKEFLAGS += --no-print-directory
 DEMO_OUT ?= out/cornell-box
 RADIOSITY = $(BUILD_DIR)/cli/radiosity
 
-.PHONY: all deps configure build demo demo-glass demo-glossy readme test bench results stability docs docs-check format format-check clean sanitize fuzz fuzz-build fuzz-campaign
+.PHONY: all deps deps-run configure configure-run executable build demo demo-glass demo-glossy readme test bench results stability docs docs-check format format-check clean sanitize fuzz fuzz-build fuzz-campaign
 
 all: build
 
+# Two sets of packages (scripts/install-deps.sh): what the executable needs to build and run
+# (make demo), and that with what the tests, benchmarks, formatting and fuzzing need.
+deps-run:
+	@bash scripts/install-deps.sh run
 deps:
-	@bash scripts/install-deps.sh
+	@bash scripts/install-deps.sh all
 
+# One build folder. make demo configures it without the tests and benchmarks (whose packages
+# it does not install) and builds the executable alone; make test (build) turns them on.
+configure-run: deps-run
+	@test -f $(BUILD_DIR)/CMakeCache.txt || cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DRAD_BUILD_TESTS=OFF -DRAD_BUILD_BENCH=OFF
 configure: deps
-	@test -f $(BUILD_DIR)/CMakeCache.txt || cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	@grep -qs '^RAD_BUILD_TESTS:BOOL=ON' $(BUILD_DIR)/CMakeCache.txt || cmake -S . -B $(BUILD_DIR) \
+	  -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRAD_BUILD_TESTS=ON -DRAD_BUILD_BENCH=ON
+
+executable: configure-run
+	@cmake --build $(BUILD_DIR) -j$(JOBS) --target radiosity
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j$(JOBS)
 
-demo: build
+demo: executable
 	@mkdir -p $(DEMO_OUT)
 	$(RADIOSITY) info data/cornell-box/scene.json
 	$(RADIOSITY) render data/cornell-box/scene.json --method albedo -o $(DEMO_OUT)/albedo.exr
@@ -43,7 +56,7 @@ demo: build
 GLASS_OUT ?= out/cornell-glass-mirror
 GLASS = data/cornell-glass-mirror/scene.json
 GLASS_SIZE ?= 192
-demo-glass: build
+demo-glass: executable
 	@mkdir -p $(GLASS_OUT)
 	$(RADIOSITY) info $(GLASS)
 	$(RADIOSITY) solve $(GLASS) -o $(GLASS_OUT)/solution.vtp
@@ -66,7 +79,7 @@ demo-glass: build
 GLOSSY_OUT ?= out/glossy-ring
 GLOSSY = data/glossy-ring/scene.json
 PANE = data/cornell-glossy-pane/scene.json
-demo-glossy: build
+demo-glossy: executable
 	@mkdir -p $(GLOSSY_OUT)
 	$(RADIOSITY) info $(GLOSSY)
 	$(RADIOSITY) solve $(GLOSSY) -o $(GLOSSY_OUT)/solution.vtp
@@ -91,7 +104,7 @@ bench: build
 	@python3 scripts/results_md.py > docs/results.md  # it shows the stability table
 
 # The README's demo section: the real output of `make demo`, spliced in by scripts/readme_demo.py.
-readme: build
+readme: executable
 	@mkdir -p out
 	@$(MAKE) demo 2>&1 | tee out/demo.log
 	@python3 scripts/readme_demo.py out/demo.log
@@ -182,8 +195,8 @@ sanitize: deps
 # build makes the seed files.
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS = fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl fuzz_points \
-  fuzz_solution fuzz_exr
+FUZZ_TARGETS = fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl fuzz_mtl \
+  fuzz_points fuzz_solution fuzz_exr
 fuzz: fuzz-build
 	@FUZZ_JOBS=$(JOBS) bash fuzz/run.sh $(FUZZ_DIR) $(FUZZ_SECONDS) $(RADIOSITY)
 

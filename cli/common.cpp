@@ -25,12 +25,18 @@ const CLI::Validator kFinite(
 
 namespace {
 bool strict_scenes = false;
+SceneOptions global_scene_options;
 }  // namespace
 
-void set_strict(bool strict) { strict_scenes = strict; }
+void set_scene_flags(bool strict, bool flip_normals) {
+  strict_scenes = strict;
+  global_scene_options.flip_normals = flip_normals;
+}
+
+SceneOptions scene_options() { return global_scene_options; }
 
 Scene load_scene_reporting(const std::string& path, InputFiles* files) {
-  Scene scene = load_scene(path, files);
+  Scene scene = load_scene(path, files, global_scene_options);
   if (strict_scenes && !scene.warnings.empty())
     throw InputError(scene.warnings.front() + " (--strict: warnings are errors)");
   for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";

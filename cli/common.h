@@ -12,6 +12,7 @@
 #include "scene/camera.h"
 #include "scene/input_files.h"
 #include "scene/scene.h"
+#include "scene/scene_loader.h"
 
 namespace rad::cli {
 
@@ -44,8 +45,15 @@ void add_image_size_options(CLI::App* sub, int* width, int* height,
 /// -j,--threads (0: all cores).
 void add_threads_option(CLI::App* sub, int* threads);
 
-/// --strict: scene warnings become errors.
-void set_strict(bool strict);
+/// The help text of every command's scene argument.
+inline constexpr const char* kSceneHelp =
+    "Scene file (JSON), or a mesh file alone (.obj with its .mtl; a camera from its bounds)";
+
+/// The global scene flags: --strict (scene warnings become errors) and --flip-normals (every
+/// polygon's front turned: SceneOptions::flip_normals).
+void set_scene_flags(bool strict, bool flip_normals);
+/// How every command loads its scene (--flip-normals).
+SceneOptions scene_options();
 
 /// Loads and validates a scene, printing its warnings to stderr; with --strict the first
 /// warning is thrown as an InputError instead. With `files`, as load_scene (scene/input_files.h).

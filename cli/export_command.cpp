@@ -23,7 +23,7 @@ namespace {
 struct ExportOptions {
   std::string scene, solution, output, stats;
   int width = 0, height = 0;
-  double exposure = 0;
+  std::optional<double> exposure;  ///< none: chosen from the radiosities
   bool no_png = false;
 };
 
@@ -86,7 +86,7 @@ void add_export_command(CLI::App& app, Run& run) {
       "patch_mesh.png (the elements flat-coloured by radiosity with their edges, from the scene\n"
       "camera; needs an X display, a private Xvfb is started without $DISPLAY; --no-png skips "
       "it).");
-  sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+  sub->add_option("scene", o->scene, kSceneHelp)->required();
   add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   sub->add_option(
@@ -95,8 +95,8 @@ void add_export_command(CLI::App& app, Run& run) {
       "projected and bound as pixel_stats.vti");
   add_image_size_options(sub, &o->width, &o->height, "patch_mesh.png");
   sub->add_option("--exposure", o->exposure,
-                  "patch_mesh.png exposure in stops (linear * 2^exposure)")
-      ->capture_default_str()
+                  "patch_mesh.png exposure in stops (linear * 2^exposure; default: the one "
+                  "that makes the 95th-percentile element white)")
       ->check(kFinite);
   sub->add_flag("--no-png", o->no_png, "Do not draw patch_mesh.png (no X display or Xvfb needed)");
   sub->callback([o, &run] { run = [o] { run_export(*o); }; });

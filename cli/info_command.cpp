@@ -148,7 +148,7 @@ void add_info_command(CLI::App& app, Run& run) {
       "polygon\n"
       "count and area of each. Warnings (what loading fixed: repeated vertices merged, slightly\n"
       "non-planar polygons split into triangles) go to stderr. --json prints the same as JSON.");
-  sub->add_option("scene", options->scene, "Scene file (JSON)")->required();
+  sub->add_option("scene", options->scene, kSceneHelp)->required();
   sub->add_flag("--json", options->json, "Print the summary as JSON");
   sub->callback([options, &run] { run = [options] { run_info(*options); }; });
 }

@@ -66,7 +66,7 @@ Inputs load_inputs(const Job& job, const std::string& scene_path,
   job.step([&] {
     if (job.is_root()) return;
     files = InputFiles::deserialize(sent);
-    scene = load_scene(scene_path, &files);  // the root printed its warnings
+    scene = load_scene(scene_path, &files, scene_options());  // the root printed its warnings
     if (solution_path.empty()) return;
     const std::string* bytes = files.find(solution_path);
     if (!bytes) throw Error(solution_path + ": not among the files the root sent");

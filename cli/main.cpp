@@ -102,7 +102,12 @@ int run_main(const rad::Job& job, int argc, char** argv) {
   app.add_flag("--strict", strict,
                "Treat the scene's warnings (an open refracting mesh, merged vertices, ...) as "
                "errors (exit 1)");
-  app.fallthrough();  // --strict may follow the subcommand too
+  bool flip_normals = false;
+  app.add_flag("--flip-normals", flip_normals,
+               "Turn every polygon's front side (reverse its vertex order): for a closed room "
+               "modelled from outside, whose fronts face out of it (solve and render both need "
+               "it: the solution is for the turned scene)");
+  app.fallthrough();  // --strict and --flip-normals may follow the subcommand too
 
   rad::cli::Run run;
   rad::cli::add_info_command(app, run);
@@ -126,7 +131,7 @@ int run_main(const rad::Job& job, int argc, char** argv) {
     return 2;
   }
 
-  rad::cli::set_strict(strict);
+  rad::cli::set_scene_flags(strict, flip_normals);
   // The commands whose work is split over an MPI job's processes; the others are the root's.
   bool distributed = false;
   for (const char* name : {"render", "probe", "sweep"})

@@ -323,7 +323,7 @@ void add_probe_command(CLI::App& app, Run& run) {
       "glossy materials (\"gloss\"), three more: glossy_r,glossy_g,glossy_b, the light of point\n"
       "sources reflected by them onto the point (paper 003's beams), also NOT in E and NOT\n"
       "covered by the bound; the path tracer follows the lobes itself, in E.");
-  sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+  sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option("-p,--points", o->points,
                   "Points file: rows x,y,z,nx,ny,nz (a header row is allowed)")
       ->required();

@@ -43,9 +43,9 @@ struct RenderOptions {
   std::string output;
   std::string preview;  ///< PNG path; default: the output with extension .png
   bool no_preview = false;
-  int width = 0, height = 0;  ///< 0: the scene camera's
-  double exposure = 0;
-  int threads = 0;  ///< 0: all cores
+  int width = 0, height = 0;       ///< 0: the scene camera's
+  std::optional<double> exposure;  ///< stops; none: auto_exposure of the image
+  int threads = 0;                 ///< 0: all cores
 };
 
 /// Per-pixel statistics of a local-pass render, as written to the stats JSON.
@@ -249,13 +249,19 @@ RenderPaths render_paths(const RenderOptions& o, const MethodTraits& m) {
 /// Writes the image, its preview and, for the local pass, the stats JSON and the per-pixel
 /// channels, as a whole (CommitGroup: every file is written before any is replaced). Returns
 /// the paths written, for the summary line.
-std::string write_render_outputs(const RenderPaths& paths, Rendered& r, double exposure) {
+std::string write_render_outputs(const RenderPaths& paths, Rendered& r,
+                                 std::optional<double> exposure) {
   CommitGroup group;
   write_exr(paths.image, r.image);
   std::string written = paths.image.string();
   if (!paths.preview.empty()) {
-    write_png_preview(paths.preview, r.image, exposure);
-    written += ", " + paths.preview.string();
+    const double stops = exposure ? *exposure : auto_exposure(r.image);
+    write_png_preview(paths.preview, r.image, stops);
+    std::ostringstream text;
+    text.precision(3);
+    text << ", " << paths.preview.string() << " (exposure " << std::showpos << stops
+         << (exposure ? ")" : ", from the image)");
+    written += text.str();
   }
   if (r.stats) {
     write_exr_channels(paths.pixels, r.pixel_stats);
@@ -331,24 +337,26 @@ void add_render_command(CLI::App& app, Run& run) {
   CLI::App* sub = app.add_subcommand(
       "render", "Render an image from the scene camera (OpenEXR + PNG preview).");
   sub->footer(
-      "Writes IMAGE.exr (linear float RGB) and a PNG preview beside it (linear x 2^exposure, "
-      "clamped,\n"
-      "sRGB). hemisphere, vertex and montecarlo also write IMAGE.stats.json (counts, bound "
-      "statistics,\n"
-      "time) and IMAGE.pixels.exr (per-pixel channels projected, emitting, surface, and for the "
-      "exact\n"
-      "methods bound and relative_bound, and refracted where light comes through refracting "
-      "materials:\n"
-      "the part of B from the heuristic of paper 000 section 4, which the bound does not cover; "
-      "export\n"
-      "--stats turns it into a VTK image), and show a progress\n"
-      "bar on a terminal. All methods but albedo and facing need --solution, and refuse one solved "
-      "for\n"
-      "a different scene. Parallel over 16x16 pixel tiles; the image does not depend on the "
-      "thread\n"
-      "count. Under mpirun the tiles are spread over the processes, with the same bytes out\n"
-      "(docs/cluster.md). File contents: docs/formats.md.");
-  sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
+      "Writes IMAGE.exr (linear float RGB: the radiosity B at the visible point, W/m^2 when "
+      "lengths are\n"
+      "metres; the radiance of a diffuse surface is B/pi) and a PNG preview beside it (linear x\n"
+      "2^exposure, clamped, sRGB; the exposure is chosen from the image unless given). "
+      "hemisphere,\n"
+      "vertex and montecarlo also write IMAGE.stats.json (counts, bound statistics, time) and\n"
+      "IMAGE.pixels.exr (per-pixel channels projected, emitting, surface, and for the exact "
+      "methods\n"
+      "bound and relative_bound, and refracted where light comes through refracting materials: the "
+      "part\n"
+      "of B from the heuristic of paper 000 section 4, which the bound does not cover; export "
+      "--stats\n"
+      "turns it into a VTK image), and show a progress bar on a terminal. All methods but albedo "
+      "and\n"
+      "facing need --solution, and refuse one solved for a different scene. Parallel over 16x16 "
+      "pixel\n"
+      "tiles; the image does not depend on the thread count. Under mpirun the tiles are spread "
+      "over the\n"
+      "processes, with the same bytes out (docs/cluster.md). File contents: docs/formats.md.");
+  sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option(
          "-m,--method", o->method,
          "hemisphere | vertex: the error-bounded local pass (004 Fig. 6) with the exact hemisphere "
@@ -382,8 +390,8 @@ void add_render_command(CLI::App& app, Run& run) {
   sub->add_flag("--no-preview", o->no_preview, "Do not write the PNG preview");
   add_image_size_options(sub, &o->width, &o->height);
   sub->add_option("--exposure", o->exposure,
-                  "Preview exposure in stops (PNG = linear * 2^exposure)")
-      ->capture_default_str()
+                  "Preview exposure in stops (PNG = linear * 2^exposure; default: the one that "
+                  "makes the image's 95th-percentile pixel white)")
       ->check(kFinite);
   add_threads_option(sub, &o->threads);
   sub->callback([o, &run] { run = [o] { run_render(*o); }; });

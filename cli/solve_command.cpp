@@ -90,7 +90,7 @@ void add_solve_command(CLI::App& app, Run& run) {
       "glossy surfaces reflect into their lobes, not carried]) on stderr. Bitwise\n"
       "deterministic for a seed, whatever the thread count. Accuracy against time:\n"
       "bench/results/global_accuracy.md. The algorithm: docs/algorithms.md.");
-  sub->add_option("scene", o->scene, "Scene file (JSON)")->required();
+  sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
   sub->add_option("--patch-size", s.patch_size,
                   "Patch edge length, as a fraction of the scene's diagonal")

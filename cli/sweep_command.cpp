@@ -108,7 +108,7 @@ void add_sweep_command(CLI::App& app, Run& run) {
       "allows 2^-23 of the value instead of 1e-8. Prints a line per setting; timings are of the\n"
       "renders alone. Pictures need an X display: without $DISPLAY a private Xvfb is started.\n"
       "Under mpirun each render's tiles are spread over the processes (docs/cluster.md).");
-  sub->add_option("scene", o->scene, "Scene file (JSON) with a camera block")->required();
+  sub->add_option("scene", o->scene, kSceneHelp)->required();
   add_solution_option(sub, &o->solution)->required();
   sub->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   sub->add_option("--methods", o->methods, "Methods to run: hemisphere, vertex, montecarlo")

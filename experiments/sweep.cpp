@@ -111,12 +111,14 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
   } else {
     reference_seconds = time_exact(settings.reference_method, 0, reference);
   }
+  // Every preview at the reference's exposure, so that they compare side by side.
+  const double exposure = auto_exposure(reference.radiosity);
   // The root writes between renders: as a step, so that a write that fails ends every process
   // rather than leaving the others waiting in the next render (distributed/job.h).
   job.step([&] {
     if (!job.is_root()) return;
     write_exr(folder / "reference.exr", reference.radiosity);
-    write_png_preview(folder / "reference.png", reference.radiosity);
+    write_png_preview(folder / "reference.png", reference.radiosity, exposure);
   });
 
   std::vector<SweepRow> rows;
@@ -133,7 +135,7 @@ SweepResult run_sweep(const Scene& scene, const std::vector<EmittingFace>& faces
     row.image = "images/" + row.slug() + ".exr";
     write_exr(folder / row.image, image.radiosity);
     write_png_preview(std::filesystem::path(folder / row.image).replace_extension(".png"),
-                      image.radiosity);
+                      image.radiosity, exposure);
     rows.push_back(std::move(row));
     maps.push_back(std::move(map));
     if (row_done) row_done(rows.back());

@@ -122,6 +122,23 @@ Image read_exr(const std::filesystem::path& file) {
   return image;
 }
 
+double auto_exposure(std::vector<double> values) {
+  std::erase_if(values, [](double v) { return !(v > 0 && std::isfinite(v)); });
+  if (values.empty()) return 0;
+  constexpr double kWhitePercentile = 0.95;
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(
+                                       kWhitePercentile * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
+  return -std::log2(*at);
+}
+
+double auto_exposure(const Image& image) {
+  std::vector<double> brightest;
+  brightest.reserve(image.pixels.size());
+  for (const Rgb& pixel : image.pixels) brightest.push_back(pixel.maxCoeff());
+  return auto_exposure(std::move(brightest));
+}
+
 unsigned char to_srgb8(double linear, double exposure) {
   double v = std::clamp(linear * std::exp2(exposure), 0.0, 1.0);
   if (std::isnan(v)) v = 0;

@@ -30,6 +30,15 @@ void write_exr_channels(const std::filesystem::path& file, const ChannelImage& i
 /// Reads every channel of an OpenEXR file as float. Throws InputError naming the file.
 ChannelImage read_exr_channels(const std::filesystem::path& file);
 
+/// The exposure (stops) a preview gets unless told one: the one that makes the 95th percentile
+/// of the positive values white (linear 1), so that the brightest 5% (a lamp, a highlight)
+/// clip and the rest keeps its shades; 0 when no value is positive. An image's radiosity is in
+/// W/m^2 (DESIGN.md §3), whose scale is the scene's: a fixed exposure shows one scene washed out
+/// and the next black.
+double auto_exposure(std::vector<double> values);
+/// auto_exposure of each pixel's brightest channel.
+double auto_exposure(const Image& image);
+
 /// 8-bit sRGB encoding of a linear value scaled by 2^exposure, clamped to [0, 1].
 unsigned char to_srgb8(double linear, double exposure);
 

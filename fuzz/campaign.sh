@@ -17,7 +17,7 @@ seconds=${FUZZ_SECONDS:-3600}
 jobs=${FUZZ_JOBS:-2}
 # The slowest first, so that the parallel runs end together.
 all="fuzz_exr fuzz_solution fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
-fuzz_points"
+fuzz_mtl fuzz_points"
 targets=${FUZZ_TARGETS-$all}
 rows=$(mktemp -d)
 trap 'rm -rf "$rows"' EXIT

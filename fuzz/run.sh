@@ -31,6 +31,7 @@ seed fuzz_scene data/*/scene.json tests/data/bad/*.json tests/data/meshes/*.json
 for format in obj ply off stl; do
   seed "fuzz_mesh_$format" tests/data/meshes/*."$format" tests/data/bad/*."$format"
 done
+seed fuzz_mtl tests/data/obj-room/*.mtl /usr/share/assimp/models/OBJ/*.mtl
 seed fuzz_points tests/data/points/*.csv
 # A small solution and a small image, made by the (sanitized) executable itself.
 if [ ! -f "$corpus/fuzz_solution/cube.vtp" ]; then
@@ -47,7 +48,7 @@ if [ "${FUZZ_NO_HEADER:-0}" != 1 ]; then
   echo "|---|---|---|---|---|"
 fi
 targets=${FUZZ_TARGETS:-fuzz_scene fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_off fuzz_mesh_stl \
-fuzz_points fuzz_solution fuzz_exr}
+fuzz_mtl fuzz_points fuzz_solution fuzz_exr}
 # FUZZ_JOBS > 1: that many targets at a time, each a run of this script on one target (the
 # corpus is seeded above, once); the rows are printed in the targets' order.
 jobs=${FUZZ_JOBS:-1}

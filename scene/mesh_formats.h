@@ -14,6 +14,7 @@
 /// validation can name them).
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -21,8 +22,16 @@
 #include <vector>
 
 #include "geometry/vec.h"
+#include "scene/mesh_reader.h"
 
 namespace rad::mesh_formats {
+
+/// The whole of a model file (a mesh, a material library) within limits::kMeshFileBytes: the
+/// bytes recorded in `files` for it, or else read from disk (a regular file only:
+/// check_input_file) and recorded there. `what` ("mesh file") and `where` (the scene element)
+/// name it in messages.
+std::string read_model_file(const std::filesystem::path& file, const std::string& what,
+                            const std::string& where, InputFiles* files);
 
 /// Faces as vertex lists, in file order.
 using Faces = std::vector<std::vector<Vec3>>;
@@ -133,8 +142,9 @@ class ByteReader {
 
 /// The format readers. Each throws InputError through source.fail() or check_claim(); `warnings`
 /// receive what a reader skips that a user may miss (OBJ lines and curves, PLY elements other
-/// than vertex and face).
-Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings);
+/// than vertex and face). read_obj also stores what the file says of its materials.
+Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings,
+               MeshMaterials& materials);
 Faces read_off(const MeshSource& source);
 Faces read_ply(const MeshSource& source, std::vector<std::string>& warnings);
 Faces read_stl(const MeshSource& source);

@@ -1,9 +1,12 @@
-// Wavefront OBJ: the polygonal subset (`v` vertices, `f` faces). Texture coordinates, normals,
-// groups and materials carry nothing a radiosity scene uses and are skipped; lines, points and
-// free-form curves and surfaces are skipped with one warning each, since they are geometry
-// a user may have expected to see.
+// Wavefront OBJ: the polygonal subset (`v` vertices, `f` faces), and which material each face
+// takes (`mtllib` libraries, `usemtl` names: MeshMaterials; mtl.h reads the libraries).
+// Texture coordinates, normals and groups carry nothing a radiosity scene uses and are skipped;
+// lines, points and free-form curves and surfaces are skipped with one warning each, since they
+// are geometry a user may have expected to see.
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <map>
 #include <string>
 
 #include "scene/limits.h"
@@ -11,7 +14,43 @@
 
 namespace rad::mesh_formats {
 
-Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings) {
+namespace {
+
+/// The rest of a line after its keyword, blanks trimmed: a material's name may hold spaces.
+std::string_view rest_of_line(std::string_view line, std::string_view keyword) {
+  std::string_view rest = line.substr(line.find(keyword) + keyword.size());
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; };
+  while (!rest.empty() && blank(rest.front())) rest.remove_prefix(1);
+  while (!rest.empty() && blank(rest.back())) rest.remove_suffix(1);
+  return rest;
+}
+
+bool ends_with_mtl(std::string_view word) {
+  if (word.size() < 4) return false;
+  std::string ext(word.substr(word.size() - 4));
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".mtl";
+}
+
+/// `mtllib a.mtl b.mtl` names several libraries; a single name with spaces is one library
+/// (exporters write "mtllib My Room.mtl"): the words are libraries only when each ends in .mtl.
+std::vector<std::string> library_names(std::string_view rest) {
+  std::vector<std::string> names;
+  Words words(rest);
+  for (std::string_view word; words.next(word);) {
+    if (!ends_with_mtl(word)) return {std::string(rest)};
+    names.emplace_back(word);
+  }
+  return names;
+}
+
+}  // namespace
+
+Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings,
+               MeshMaterials& materials) {
+  int current_material = -1;  // index into materials.names of the latest usemtl
+  std::map<std::string, int, std::less<>> name_index;
   SoupBuilder soup(source, 1);
   Lines lines(source.bytes);
   std::vector<std::string> skipped;  // kinds of geometry skipped, each warned once
@@ -50,6 +89,21 @@ Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings) {
         soup.add_index(*index > 0 ? *index - 1 : soup.vertex_count() + *index);
       }
       soup.end_face();
+      materials.face_name.push_back(current_material);
+    } else if (keyword == "mtllib") {
+      for (std::string& name : library_names(rest_of_line(line, keyword))) {
+        materials.libraries.push_back(std::move(name));
+        materials.library_line.push_back(lines.number());
+      }
+    } else if (keyword == "usemtl") {
+      const std::string name(rest_of_line(line, keyword));
+      const auto [known, added] =
+          name_index.try_emplace(name, static_cast<int>(materials.names.size()));
+      current_material = known->second;
+      if (added) {
+        materials.names.push_back(name);
+        materials.first_line.push_back(lines.number());
+      }
     } else {
       static constexpr std::array<std::string_view, 5> kGeometryNotRead{"l", "p", "curv", "curv2",
                                                                         "surf"};

@@ -10,6 +10,17 @@
 
 namespace rad {
 
+/// What an OBJ file says of its materials (mtl.h reads them): the material libraries it names
+/// (`mtllib`, paths as written, relative to the OBJ's folder) and the material (`usemtl`) each
+/// face was given. Empty for the other formats, which name none.
+struct MeshMaterials {
+  std::vector<std::string> libraries;
+  std::vector<std::string> names;       ///< usemtl names, in order of first use
+  std::vector<long long> first_line;    ///< the line of each name's first usemtl
+  std::vector<int> face_name;           ///< per face: an index into names, or -1 before any
+  std::vector<long long> library_line;  ///< the line of each library's mtllib
+};
+
 /// Reads the faces of a mesh file as vertex lists in file order (counter-clockwise = front).
 /// `where` names the element for messages. Throws InputError when the file is missing,
 /// unreadable, of an unsupported format, malformed (naming the line or element), or claims more
@@ -18,13 +29,17 @@ namespace rad {
 /// with too few vertices or non-finite coordinates comes back as it is, for polygon validation to
 /// name. Non-manifold faces are kept. Cost: one pass over the file, which is held in memory.
 /// With `files`, the bytes recorded there for `file` are read instead of the disk, and bytes
-/// read from disk are recorded (scene/input_files.h).
+/// read from disk are recorded (scene/input_files.h). With `materials`, what an OBJ says of its
+/// materials is stored there (nothing is read from its libraries).
 std::vector<std::vector<Vec3>> read_mesh_faces(const std::filesystem::path& file,
                                                const std::string& where,
                                                std::vector<std::string>& warnings,
-                                               InputFiles* files = nullptr);
+                                               InputFiles* files = nullptr,
+                                               MeshMaterials* materials = nullptr);
 
 /// True for the extensions read_mesh_faces accepts (case-insensitive): .obj .ply .off .stl
 bool is_supported_mesh_extension(const std::filesystem::path& file);
+/// True for the formats whose files name their faces' materials: .obj (MeshMaterials).
+bool names_own_materials(const std::filesystem::path& file);
 
 }  // namespace rad

@@ -28,7 +28,36 @@ Polygon finish(std::vector<Vec3> vertices, const Vec3& newell, int material, int
   return p;
 }
 
+/// The vertices with consecutive repeats merged (last == first included, common in exported
+/// files): points within tol.duplicate_vertex of the polygon's extent `scale` are one.
+std::vector<Vec3> merge_repeated(const std::vector<Vec3>& vertices, double scale,
+                                 const PolygonTolerances& tol) {
+  std::vector<Vec3> distinct;
+  for (const Vec3& v : vertices) {
+    if (distinct.empty() || (v - distinct.back()).norm() > tol.duplicate_vertex * scale) {
+      distinct.push_back(v);
+    }
+  }
+  while (distinct.size() > 1 &&
+         (distinct.front() - distinct.back()).norm() <= tol.duplicate_vertex * scale) {
+    distinct.pop_back();
+  }
+  return distinct;
+}
+
+bool has_zero_area(const Vec3& newell, double scale, const PolygonTolerances& tol) {
+  return !(0.5 * newell.norm() > tol.zero_area * scale * scale);
+}
+
 }  // namespace
+
+bool holds_no_area(const std::vector<Vec3>& vertices, const PolygonTolerances& tolerances) {
+  for (const Vec3& v : vertices)
+    if (!v.allFinite() || !(v.cwiseAbs().maxCoeff() <= limits::kCoordinate)) return false;
+  const double scale = extent(vertices);
+  const std::vector<Vec3> distinct = merge_repeated(vertices, scale, tolerances);
+  return distinct.size() < 3 || has_zero_area(newell_vector(distinct), scale, tolerances);
+}
 
 std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string& where,
                                    int material, int object, int source_index,
@@ -49,18 +78,8 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
     }
   }
 
-  // Merge consecutive duplicates (including last == first, common in exported files).
   const double scale = extent(vertices);
-  std::vector<Vec3> distinct;
-  for (const Vec3& v : vertices) {
-    if (distinct.empty() || (v - distinct.back()).norm() > tol.duplicate_vertex * scale) {
-      distinct.push_back(v);
-    }
-  }
-  while (distinct.size() > 1 &&
-         (distinct.front() - distinct.back()).norm() <= tol.duplicate_vertex * scale) {
-    distinct.pop_back();
-  }
+  std::vector<Vec3> distinct = merge_repeated(vertices, scale, tol);
   if (distinct.size() != vertices.size()) {
     warnings.push_back(where + ": merged " + std::to_string(vertices.size() - distinct.size()) +
                        " repeated consecutive vertices");
@@ -71,7 +90,7 @@ std::vector<Polygon> make_polygons(std::vector<Vec3> vertices, const std::string
   }
 
   const Vec3 newell = newell_vector(distinct);
-  if (!(0.5 * newell.norm() > tol.zero_area * scale * scale)) {
+  if (has_zero_area(newell, scale, tol)) {
     throw InputError(where + ": has zero area (its vertices are collinear or coincident)");
   }
   const Vec3 n = newell.normalized();

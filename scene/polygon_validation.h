@@ -24,6 +24,12 @@ struct PolygonTolerances {
   double self_touch = relative::kMatch;
 };
 
+/// True when the vertices (finite, within the coordinate limit) hold no area: fewer than 3
+/// distinct vertices, or zero area, by make_polygons' own tests. A mesh face that holds none
+/// carries no light and blocks none, so a mesh may drop it (mesh_object.h); make_polygons
+/// refuses it.
+bool holds_no_area(const std::vector<Vec3>& vertices, const PolygonTolerances& tolerances = {});
+
 /// Validates one polygon and returns it as one polygon, or as triangles when it is slightly
 /// non-planar. `where` names the element in messages ("scene.json: objects[1] polygon 4").
 /// Throws InputError for: fewer than 3 (distinct) vertices, non-finite coordinates, zero area,

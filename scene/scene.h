@@ -27,7 +27,7 @@ namespace rad {
 struct SceneObject {
   std::string name;       ///< "name" from the file, or empty.
   std::string mesh;       ///< Mesh path as written, or empty for inline polygons.
-  int material = -1;      ///< Index into Scene::materials.
+  int material = -1;      ///< Index into Scene::materials; -1 when its faces have several.
   int first_polygon = 0;  ///< Its polygons are [first_polygon, first_polygon + polygon_count).
   int polygon_count = 0;
 };

@@ -14,8 +14,10 @@
 #include "scene/error.h"
 #include "scene/input_files.h"
 #include "scene/limits.h"
+#include "scene/mesh_object.h"
 #include "scene/mesh_reader.h"
 #include "scene/polygon_validation.h"
+#include "scene/scene_checks.h"
 #include "scene/scene_json.h"
 
 namespace rad {
@@ -271,28 +273,12 @@ std::vector<std::vector<Vec3>> read_inline_polygons(const Reader& in, const Json
   return faces;
 }
 
-/// 000 §4 follows light into a polyhedron and out through another of its facets: a refracting
-/// object should be closed, with its fronts facing out. Warns otherwise.
-void check_refracting_closure(const Reader& in, const std::string& where, const SceneObject& object,
-                              Scene& scene) {
-  const SurfaceClosure closure =
-      surface_closure(scene.polygons, object.first_polygon, object.polygon_count);
-  if (closure.unpartnered_edges > 0) {
-    scene.warnings.push_back(
-        in.at(where) + ": refracting but not closed (" + std::to_string(closure.unpartnered_edges) +
-        " edges without a reversed partner); light that enters it may not leave");
-  } else if (!(closure.volume > 0)) {
-    scene.warnings.push_back(in.at(where) +
-                             ": refracting with its fronts facing in (the index is of "
-                             "the medium behind the front side)");
-  }
-}
-
 /// objects[i]: its polygons (inline or from a mesh file beside the scene file), validated, into
-/// scene.polygons, and the object into scene.objects.
+/// scene.polygons, and the object into scene.objects. An OBJ object without "material" takes
+/// its faces' own (usemtl, from its mtllib libraries; mesh_object.h).
 void read_object(const Reader& in, const Json& o, size_t i, const std::filesystem::path& folder,
-                 const std::map<std::string, int>& material_index, Scene& scene,
-                 InputFiles* files) {
+                 const std::map<std::string, int>& material_index, const SceneOptions& options,
+                 LibraryMaterials& library_materials, Scene& scene, InputFiles* files) {
   std::string where = "objects[" + std::to_string(i) + "]";
   in.require_object(o, where, {"name", "mesh", "polygons", "material", "smooth"});
   SceneObject object;
@@ -303,37 +289,40 @@ void read_object(const Reader& in, const Json& o, size_t i, const std::filesyste
   if (o.contains("mesh") == o.contains("polygons")) {
     in.fail(where, "needs exactly one of \"mesh\" or \"polygons\"");
   }
-  if (!o.contains("material")) in.fail(where, "missing \"material\"");
-  const std::string material = in.string(o["material"], where + ".material");
-  const auto found = material_index.find(material);
-  if (found == material_index.end()) {
-    in.fail(where, "unknown material \"" + material + "\"");
+  if (o.contains("mesh")) object.mesh = in.string(o["mesh"], where + ".mesh");
+  const bool own_materials = !o.contains("material") && names_own_materials(object.mesh);
+  if (!o.contains("material") && !own_materials) {
+    in.fail(where, o.contains("mesh") ? "missing \"material\" (only an OBJ mesh names its own)"
+                                      : "missing \"material\"");
   }
-  object.material = found->second;
+  if (!own_materials) {
+    const std::string material = in.string(o["material"], where + ".material");
+    const auto found = material_index.find(material);
+    if (found == material_index.end()) {
+      in.fail(where, "unknown material \"" + material + "\"");
+    }
+    object.material = found->second;
+  }
   object.first_polygon = static_cast<int>(scene.polygons.size());
   const int object_id = static_cast<int>(i);
 
   std::vector<std::vector<Vec3>> faces;
-  std::string element;
+  std::vector<int> face_material;
   if (o.contains("mesh")) {
-    object.mesh = in.string(o["mesh"], where + ".mesh");
     where += " (" + object.mesh + ")";
-    faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings, files);
-    element = " face ";
+    MeshMaterials use;
+    faces = read_mesh_faces(folder / object.mesh, in.at(where), scene.warnings, files, &use);
+    if (own_materials) {
+      face_material = obj_face_materials(use, folder / object.mesh, in.at(where), material_index,
+                                         scene, library_materials, files);
+      object.material = common_material(face_material);
+    }
   } else {
     faces = read_inline_polygons(in, o["polygons"], where);
-    element = " polygon ";
   }
-  for (size_t f = 0; f < faces.size(); ++f) {
-    const int index = static_cast<int>(f);
-    for (Polygon& p : make_polygons(std::move(faces[f]), in.at(where + element + std::to_string(f)),
-                                    object.material, object_id, index, scene.warnings)) {
-      scene.polygons.push_back(std::move(p));
-    }
-  }
-  if (static_cast<long long>(scene.polygons.size()) > limits::kPolygons) {
-    in.fail(where, "the scene has more than " + std::to_string(limits::kPolygons) + " polygons");
-  }
+  if (!own_materials) face_material.assign(faces.size(), object.material);
+  add_object_faces(std::move(faces), face_material, in.at(where), o.contains("mesh"), object_id,
+                   options.flip_normals, scene);
   object.polygon_count = static_cast<int>(scene.polygons.size()) - object.first_polygon;
   if (o.contains("smooth")) {
     if (!o["smooth"].is_boolean()) in.fail(where + ".smooth", "expected true or false");
@@ -343,45 +332,14 @@ void read_object(const Reader& in, const Json& o, size_t i, const std::filesyste
       smooth_normals(scene.polygons, object.first_polygon, object.polygon_count);
     }
   }
-  if (scene.materials[object.material].refracts())
-    check_refracting_closure(in, where, object, scene);
+  check_refracting_closure(in.at(where), object, scene);
   scene.objects.push_back(std::move(object));
-}
-
-/// Refuses a scene whose light would overflow the arithmetic (limits::kPower), naming the first
-/// element whose power passes the limit, or the total when none alone does.
-void check_power(const Reader& in, const Scene& scene) {
-  const auto too_much = [](double watts) { return !(watts <= limits::kPower); };
-  std::string limit;
-  {
-    std::ostringstream text;
-    text << limits::kPower;
-    limit = text.str();
-  }
-  for (size_t i = 0; i < scene.polygons.size(); ++i) {
-    const Polygon& p = scene.polygons[i];
-    if (too_much(scene.materials[p.material].emission.maxCoeff() * p.area)) {
-      throw InputError(in.at(scene.describe_polygon(static_cast<int>(i))) + ": emits more than " +
-                       limit + " W (emission times area): the arithmetic would overflow");
-    }
-  }
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    if (too_much(4 * std::numbers::pi * scene.lights[i].intensity.maxCoeff())) {
-      in.fail("lights[" + std::to_string(i) + "]",
-              "emits more than " + limit + " W (4 pi intensity): the arithmetic would overflow");
-    }
-  }
-  // No element alone passes the limit; all of them together may (Scene's own sums).
-  if (too_much((scene.emitted_power() + scene.light_power()).maxCoeff())) {
-    in.fail("top level",
-            "the lights emit more than " + limit + " W in all: the arithmetic would overflow");
-  }
 }
 
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::filesystem::path& file,
-                  InputFiles* files) {
+                  InputFiles* files, const SceneOptions& options) {
   const Reader in(file.string());
   const Json root = parse_json(json_text, file);
   Scene scene;
@@ -391,21 +349,31 @@ Scene parse_scene(const std::string& json_text, const std::filesystem::path& fil
       {"materials", "objects", "lights", "camera", "mirror_depth", "refraction_depth"});
   read_depths(in, root, scene);
   const std::map<std::string, int> material_index = read_materials(in, root, scene);
+  LibraryMaterials library_materials;
   if (!root.contains("objects")) in.fail("top level", "missing \"objects\"");
   const Json& objects = root["objects"];
   if (!objects.is_array()) in.fail("objects", "expected a list of objects");
   for (size_t i = 0; i < objects.size(); ++i)
-    read_object(in, objects[i], i, file.parent_path(), material_index, scene, files);
+    read_object(in, objects[i], i, file.parent_path(), material_index, options, library_materials,
+                scene, files);
   if (scene.polygons.empty()) in.fail("objects", "the scene has no polygons");
   if (root.contains("lights")) scene.lights = read_lights(in, root["lights"]);
   if (root.contains("camera")) scene.camera = read_camera(in, root["camera"]);
-  check_power(in, scene);
+  check_power(scene, file.string());
+  check_facing(scene);
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& file, InputFiles* files) {
+Scene load_scene(const std::filesystem::path& file, InputFiles* files,
+                 const SceneOptions& options) {
+  if (is_supported_mesh_extension(file)) {  // a bare mesh: `radiosity info room.obj`
+    Scene scene = mesh_scene(file, files, options.flip_normals);
+    check_power(scene, file.string());
+    check_facing(scene);
+    return scene;
+  }
   if (const std::string* recorded = files ? files->find(file) : nullptr)
-    return parse_scene(*recorded, file, files);
+    return parse_scene(*recorded, file, files, options);
   check_input_file(file, "scene file");
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw InputError(file.string() + ": cannot open scene file");
@@ -420,7 +388,7 @@ Scene load_scene(const std::filesystem::path& file, InputFiles* files) {
   text << stream.rdbuf();
   if (stream.bad()) throw InputError(file.string() + ": cannot read scene file");
   if (files) files->add(file, text.str());
-  return parse_scene(text.str(), file, files);
+  return parse_scene(text.str(), file, files, options);
 }
 
 }  // namespace rad

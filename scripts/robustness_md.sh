@@ -102,6 +102,22 @@ left (a writer holds a lock on its temporary, which the kernel drops with the pr
 | `compare` against a Y-only image or a `.pixels.exr`; a NaN or infinite pixel; a black reference | exit 1: "no R channel: not an RGB image (its channels: Y)", "pixel (1, 1) is not a finite number", "no pixel to compare" (they reported "pixels compared: 0, max relative error 0") |
 | a points CSV whose first row has 7 or 5 numbers; a normal (1e300, 1e300, 1e300) | the row is an error, not a header ("expected 6 fields"); the normal is scaled before it is normalised (it became (0, 0, 0) and E = 0) |
 
+A user's own scene (`tests/scene/mtl_test.cpp`, on a room written as Blender writes OBJ and MTL,
+`tests/data/obj-room/`, and on the OBJ+MTL models of Debian's `assimp-testmodels`):
+
+| case | what happens |
+|---|---|
+| an OBJ's `mtllib` and `usemtl` (they were ignored with "warnings 0": a room from Blender had no light) | read: Kd, Ke (emission pi Ke), d/Tr and Tf, Ks/Ns with `illum` 3 to 9, Ni with glass `illum` (docs/formats.md, "OBJ materials"); the room's scene equals the same room written by hand as a scene file (one fingerprint) |
+| `radiosity info room.obj`, a mesh alone | a scene of one object, with a camera from its bounds (inside a room, outside an object) |
+| a scene file whose OBJ object has no `"material"` | its faces take the OBJ's own |
+| a missing library, a `usemtl` no library holds, faces before any `usemtl` | grey (reflectance 0.5), a warning each naming the OBJ line |
+| Kd 1, or Kd + Ks above 1 (common in MTL) | scaled to what a surface can send on (reflectance at most 0.99, the sum at most 1), with a warning naming the material and the factor |
+| a malformed MTL statement | "room.mtl line 3: 'Kd' needs 1 or 3 numbers, has 2" |
+| mesh faces of no area (exporters write them: 4 in assimp's regr01, 56 in its spider) | left out, counted in one warning (they carry no light); the model loads |
+| a closed room with its fronts facing out (a Blender cube) | a warning, also an error under `--strict`: "no polygon faces a light ... --flip-normals turns every polygon"; `--flip-normals` gives the room facing in (the same fingerprint as `room.obj`) |
+| nothing emits (no emission, no Ke, no point light) | a warning: "nothing emits light ... every result is black" |
+| previews at exposure 0 were washed out (walls of B 1 to 2 clipped at 1) | the exposure is chosen from the image (its 95th-percentile pixel white) unless `--exposure` is given; the summary line says which |
+
  `tests/cli/durability_test.cpp` kills large renders at a dozen moments of their run and
 checks that the previous image is intact, that two processes writing one output leave one whole
 file, that solve, probe and every render method give byte-identical files for 1, 2 and 4

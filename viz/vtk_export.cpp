@@ -128,11 +128,23 @@ void write_pixel_image_vti(const std::filesystem::path& file, int width, int hei
 }
 
 void write_patch_mesh_png(const std::filesystem::path& file, const Solution& solution,
-                          const Scene& scene, const CameraSpec& camera, double exposure) {
+                          const Scene& scene, const CameraSpec& camera,
+                          std::optional<double> given_exposure) {
   ensure_display();
   const vtkSmartPointer<vtkPolyData> mesh = patch_mesh_polydata(solution, scene);
   // Colours are the radiosities tone-mapped as the PNG previews are: what is seen is B itself.
   vtkDataArray* radiosity = mesh->GetCellData()->GetArray("radiosity");
+  double exposure = 0;
+  if (given_exposure) {
+    exposure = *given_exposure;
+  } else {
+    std::vector<double> brightest;
+    for (vtkIdType i = 0; i < mesh->GetNumberOfCells(); ++i) {
+      const double* b = radiosity->GetTuple3(i);
+      brightest.push_back(std::max({b[0], b[1], b[2]}));
+    }
+    exposure = auto_exposure(std::move(brightest));
+  }
   vtkNew<vtkUnsignedCharArray> colours;
   colours->SetName("colour");
   colours->SetNumberOfComponents(3);

@@ -3,6 +3,7 @@
 /// per-pixel statistics of a render as an image, and a picture of the patch mesh.
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,11 @@ void write_pixel_image_vti(const std::filesystem::path& file, int width, int hei
 
 /// A picture of the patch mesh from `camera` (perspective, the scene camera's frame and field
 /// of view): each element flat-shaded with its radiosity (linear x 2^exposure, clamped,
-/// sRGB-encoded; exposure < 0 ... > 0 as for previews) and the element edges drawn thin and
-/// dark. RGB PNG of the camera's size. Needs an X display (started if missing). Throws Error.
+/// sRGB-encoded, as previews are; without an exposure, auto_exposure of the elements'
+/// brightest channels) and the element edges drawn thin and dark. RGB PNG of the camera's
+/// size. Needs an X display (started if missing). Throws Error.
 void write_patch_mesh_png(const std::filesystem::path& file, const Solution& solution,
-                          const Scene& scene, const CameraSpec& camera, double exposure = 0);
+                          const Scene& scene, const CameraSpec& camera,
+                          std::optional<double> exposure = std::nullopt);
 
 }  // namespace rad

@@ -5,9 +5,11 @@
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <random>
+#include <vector>
 
 #include "formats/atomic_file.h"
 #include "scene/error.h"
@@ -141,6 +143,27 @@ TEST(ImageIo, SrgbEncodingMatchesTheStandard) {
   EXPECT_EQ(to_srgb8(0.5, 0), 188);   // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354
   EXPECT_EQ(to_srgb8(0.25, 1), 188);  // one stop up
   EXPECT_EQ(to_srgb8(0.002, 0), 7);   // linear segment: 12.92 * 0.002 * 255 = 6.6
+}
+
+TEST(ImageIo, AutoExposureMakesThe95thPercentileWhite) {
+  // 1, 2, ..., 100: the 95th percentile (index 0.95 * 99, rounded down) is 95.
+  std::vector<double> values;
+  for (int i = 1; i <= 100; ++i) values.push_back(i);
+  EXPECT_DOUBLE_EQ(auto_exposure(values), -std::log2(95.0));
+  EXPECT_EQ(to_srgb8(95, auto_exposure(values)), 255);
+  EXPECT_LT(to_srgb8(94, auto_exposure(values)), 255);
+  // Black, NaN and negative values are not part of the picture's range: a few lit pixels on
+  // black get the exposure of their own values.
+  values.insert(values.end(), 1000, 0.0);
+  values.push_back(std::nan(""));
+  values.push_back(-5);
+  EXPECT_DOUBLE_EQ(auto_exposure(values), -std::log2(95.0));
+  EXPECT_EQ(auto_exposure(std::vector<double>(10, 0.0)), 0);
+  // An image: each pixel's brightest channel.
+  Image image(2, 1);
+  image.at(0, 0) = Rgb(0.5, 4, 1);
+  image.at(1, 0) = Rgb(0, 0, 0);
+  EXPECT_DOUBLE_EQ(auto_exposure(image), -2);
 }
 
 TEST(ImageIo, PngPreviewIsTopDownAndEncoded) {
