@@ -12,22 +12,6 @@
 #include "localpass/local_pass.h"
 
 namespace rad {
-namespace {
-
-/// A term of the sum with its certified interval, per channel: lo <= exact term <= hi.
-struct Term {
-  double width = 0;                          ///< max_c (hi - lo): the refinement order
-  int index = -1;                            ///< Cluster (heap) or face (pending)
-  int blockers_begin = 0, blockers_end = 0;  ///< Its blockers in the call's pool; none: seen whole
-  Rgb lo = Rgb::Zero(), hi = Rgb::Zero();
-  bool seen_whole() const { return blockers_begin == blockers_end; }
-};
-/// Widest first; ties by index, so that the order (and the image) does not depend on threads.
-bool narrower(const Term& a, const Term& b) {
-  return a.width != b.width ? a.width < b.width : a.index > b.index;
-}
-
-}  // namespace
 
 /// The state of one gather. The sum H = exact + sum of heap terms + sum of pending terms +
 /// gathered, each in its interval: `exact` for faces seen whole (Lambert's formula), the heap
@@ -68,6 +52,19 @@ class LocalPass::ClusterGather {
   }
 
  private:
+  /// A term of the sum with its certified interval, per channel: lo <= exact term <= hi.
+  struct Term {
+    double width = 0;                          ///< max_c (hi - lo): the refinement order
+    int index = -1;                            ///< Cluster (heap) or face (pending)
+    int blockers_begin = 0, blockers_end = 0;  ///< Its blockers in the call's pool; none: whole
+    Rgb lo = Rgb::Zero(), hi = Rgb::Zero();
+    bool seen_whole() const { return blockers_begin == blockers_end; }
+  };
+  /// Widest first; ties by index, so that the order (and the image) does not depend on threads.
+  static bool narrower(const Term& a, const Term& b) {
+    return a.width != b.width ? a.width < b.width : a.index > b.index;
+  }
+
   /// The root cluster of every polygon x may see (localpass/visible_set.h; without the
   /// visibility culling, the whole scene), each with its blockers among the candidates.
   void add_roots() {

@@ -51,8 +51,8 @@ std::vector<int> obj_face_materials(const MeshMaterials& use, const std::filesys
       continue;
     }
     for (auto& [name, material] : parse_material_library(text, path.string(), scene.warnings)) {
-      const auto [it, fresh] = added.index.try_emplace({path.string(), name},
-                                                       static_cast<int>(scene.materials.size()));
+      const auto [it, fresh] =
+          added.index.try_emplace({path.string(), name}, static_cast<int>(scene.materials.size()));
       if (fresh) scene.materials.push_back(material);
       by_name.try_emplace(name, it->second);
     }
@@ -68,18 +68,18 @@ std::vector<int> obj_face_materials(const MeshMaterials& use, const std::filesys
       material_of[n] = found->second;
       continue;
     }
-    material_of[n] = grey_material(scene, added);
     if (faces_of[n] == 0) continue;  // a usemtl no face follows
+    material_of[n] = grey_material(scene, added);
     scene.warnings.push_back(
         where + ": line " + std::to_string(use.first_line[n]) + ": material '" + use.names[n] +
         "' is in " + (libraries.empty() ? "no library (no mtllib)" : "none of " + libraries) +
         ": its " + faces_are(faces_of[n]) + " grey (reflectance 0.5)");
   }
   if (unnamed > 0) {
-    scene.warnings.push_back(where + ": " + faces_text(unnamed) +
-                             (use.names.empty() ? " and no material (usemtl)"
-                                                : " before the first usemtl") +
-                             ": grey (reflectance 0.5), and nothing emits light");
+    scene.warnings.push_back(
+        where + ": " + faces_text(unnamed) +
+        (use.names.empty() ? " and no material (usemtl)" : " before the first usemtl") +
+        ": grey (reflectance 0.5), emitting nothing");
   }
   std::vector<int> face_material;
   face_material.reserve(use.face_name.size());
@@ -89,9 +89,9 @@ std::vector<int> obj_face_materials(const MeshMaterials& use, const std::filesys
 }
 
 int common_material(const std::vector<int>& face_material) {
-  const bool one = !face_material.empty() &&
-                   std::all_of(face_material.begin(), face_material.end(),
-                               [&](int m) { return m == face_material.front(); });
+  const bool one =
+      !face_material.empty() && std::all_of(face_material.begin(), face_material.end(),
+                                            [&](int m) { return m == face_material.front(); });
   return one ? face_material.front() : -1;
 }
 
@@ -129,7 +129,7 @@ CameraSpec camera_from_bounds(const Scene& scene) {
   const Vec3 middle = (bounds.lo + bounds.hi) / 2;
   const RayCaster caster(scene);
   const double skip = scene.tolerance().pad;  // a polygon through the middle is no wall
-  int walls = 0;  // fronts met from the middle
+  int walls = 0;                              // fronts met from the middle
   double front_wall = 0;
   for (int axis = 0; axis < 3; ++axis) {
     for (const double sign : {-1.0, 1.0}) {
@@ -148,7 +148,8 @@ CameraSpec camera_from_bounds(const Scene& scene) {
     spec.eye = middle + 0.9 * front_wall * Vec3::UnitZ();
   } else {  // an object: the sphere about its bounds fills the view
     spec.fov_deg = 40;
-    const double distance = bounds.diagonal() / 2 / std::sin(spec.fov_deg / 2 * std::numbers::pi / 180);
+    const double distance =
+        bounds.diagonal() / 2 / std::sin(spec.fov_deg / 2 * std::numbers::pi / 180);
     spec.eye = middle + 1.05 * distance * Vec3(0.5, 0.4, 1).normalized();
   }
   return spec;

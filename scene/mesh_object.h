@@ -49,8 +49,9 @@ void add_object_faces(std::vector<std::vector<Vec3>> faces, const std::vector<in
 
 /// A camera that shows a scene that has none: from inside when the middle of its bounds is a
 /// room's (a ray along each axis meets a polygon's front: a solid's middle meets backs), near
-/// the +z wall looking at the middle, 60 degrees; else from outside, back along (0.5, 0.4, 1) far enough that the bounds'
-/// sphere fills a 40 degree view. Up is +y, the convention of OBJ exporters.
+/// the +z wall looking at the middle, 60 degrees; else from outside, back along (0.5, 0.4, 1) far
+/// enough that the bounds' sphere fills a 40 degree view. Up is +y, the convention of OBJ
+/// exporters.
 CameraSpec camera_from_bounds(const Scene& scene);
 
 /// A mesh file alone as a scene: one object of all its faces, an OBJ's with the materials of

@@ -86,7 +86,8 @@ class MtlParser {
     int count = 0;
     for (std::string_view word; words.next(word);) {
       if (count == 0 && (word == "spectral" || word == "xyz")) {
-        fail(quote(std::string(keyword) + " " + std::string(word)) + " colours are not supported (give r g b)");
+        fail(quote(std::string(keyword) + " " + std::string(word)) +
+             " colours are not supported (give r g b)");
       }
       const auto value = parse_real(word);
       if (count == 3 || !value || !std::isfinite(*value)) {

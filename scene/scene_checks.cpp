@@ -56,10 +56,10 @@ void check_power(const Scene& scene, const std::string& file) {
 }
 
 void check_refracting_closure(const std::string& where, const SceneObject& object, Scene& scene) {
-  const bool refracts = std::any_of(
-      scene.polygons.begin() + object.first_polygon,
-      scene.polygons.begin() + object.first_polygon + object.polygon_count,
-      [&](const Polygon& p) { return scene.materials[p.material].refracts(); });
+  const bool refracts =
+      std::any_of(scene.polygons.begin() + object.first_polygon,
+                  scene.polygons.begin() + object.first_polygon + object.polygon_count,
+                  [&](const Polygon& p) { return scene.materials[p.material].refracts(); });
   if (!refracts) return;
   const SurfaceClosure closure =
       surface_closure(scene.polygons, object.first_polygon, object.polygon_count);

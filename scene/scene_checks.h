@@ -17,12 +17,12 @@ void check_power(const Scene& scene, const std::string& file);
 /// the object by `where`.
 void check_refracting_closure(const std::string& where, const SceneObject& object, Scene& scene);
 
-/// Warns when nothing emits, and when the lights face no receiver: no polygon's front side sees an emitter's front side
-/// or a point light (every receiver is behind every light, so the solution is black). That is
-/// what a closed room modelled from outside gives, its fronts facing out of it (a Blender cube):
-/// the warning says so and names --flip-normals. Two polygons face each other when each has a
-/// vertex strictly in front of the other's plane. Cost: O(n) per light, over at most 64 of the
-/// emitting polygons (spread over the list) and 64 point lights, until one faces a receiver.
+/// Warns when nothing emits, and when the lights face no receiver: no polygon's front side sees an
+/// emitter's front side or a point light (every receiver is behind every light, so the solution is
+/// black). That is what a closed room modelled from outside gives, its fronts facing out of it (a
+/// Blender cube): the warning says so and names --flip-normals. Two polygons face each other when
+/// each has a vertex strictly in front of the other's plane. Cost: O(n) per light, over at most 64
+/// of the emitting polygons (spread over the list) and 64 point lights, until one faces a receiver.
 void check_facing(Scene& scene);
 
 }  // namespace rad

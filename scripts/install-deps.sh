@@ -8,7 +8,7 @@ set -euo pipefail
 
 set_name=${1:-all}
 run_packages=(
-  cmake g++ make pkg-config
+  cmake g++ make ninja-build pkg-config
   libeigen3-dev libopenmesh-dev libembree-dev libtbb-dev
   libvtk9-dev libopenexr-dev python3-imath
   libcli11-dev nlohmann-json3-dev libboost-dev

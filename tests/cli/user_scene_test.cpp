@@ -44,11 +44,10 @@ TEST(UserScene, ARoomFacingOutWarnsFailsUnderStrictAndFlipsBack) {
   EXPECT_NE(r.err.find("no polygon faces a light"), std::string::npos) << r.err;
   r = run("--strict info " + outward);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("--flip-normals turns every polygon (--strict"), std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find("--flip-normals turns every polygon (--strict"), std::string::npos) << r.err;
   // Before or after the command, the flag turns the room to face in: no warning.
-  for (const std::string& args : {"--flip-normals info " + outward,
-                                  "--strict info " + outward + " --flip-normals"}) {
+  for (const std::string& args :
+       {"--flip-normals info " + outward, "--strict info " + outward + " --flip-normals"}) {
     r = run(args);
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
     EXPECT_EQ(r.err, "") << args;

@@ -23,8 +23,10 @@ Material only(const std::string& text, std::vector<std::string>* warnings_out = 
   std::vector<std::string> warnings;
   const MaterialLibrary library = parse_material_library(text, "t.mtl", warnings);
   EXPECT_EQ(library.size(), 1u);
-  if (warnings_out) *warnings_out = warnings;
-  else EXPECT_TRUE(warnings.empty()) << warnings.front();
+  if (warnings_out)
+    *warnings_out = warnings;
+  else
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
   return library.begin()->second;
 }
 
@@ -167,7 +169,8 @@ TEST(ObjScene, ARoomTakesItsMaterialsAsTheSameRoomWrittenByHand) {
   // A material of the scene file's own with a usemtl's name takes that name's faces.
   const std::filesystem::path dir = test::scratch_dir("obj_named");
   write(dir / "s.json", R"({"materials": {"Lamp": {"emission": [2, 2, 2]}},
-                           "objects": [{"mesh": ")" + (kRoom / "room.obj").string() + R"("}]})");
+                           "objects": [{"mesh": ")" +
+                            (kRoom / "room.obj").string() + R"("}]})");
   const Scene relit = load_scene(dir / "s.json");
   EXPECT_EQ(relit.emitted_power(), Rgb(2, 2, 2));  // the lamp's 1 m^2 at 2 W/m^2
   EXPECT_EQ(relit.materials[relit.polygons[0].material].name, "Floor");  // from room.mtl
@@ -196,8 +199,9 @@ TEST(ObjScene, AScenePointLightLightingNothingWarnsToo) {
         R"({"materials": {"m": {}}, "lights": [{"position": [0, 1, 0], "intensity": [1, 1, 1]}],
             "objects": [{"material": "m", "polygons": [[[0, 0, 0], [1, 0, 0], [1, 0, 1]]]}]})");
   EXPECT_TRUE(contains(load_scene(dir / "s.json").warnings, "no polygon faces a light"));
-  write(dir / "dark.json",
-        R"({"materials": {"m": {}}, "objects": [{"material": "m", "polygons": [[[0, 0, 0], [1, 0, 0], [1, 0, 1]]]}]})");
+  write(
+      dir / "dark.json",
+      R"({"materials": {"m": {}}, "objects": [{"material": "m", "polygons": [[[0, 0, 0], [1, 0, 0], [1, 0, 1]]]}]})");
   EXPECT_TRUE(contains(load_scene(dir / "dark.json").warnings, "nothing emits light"));
 }
 
@@ -213,11 +217,13 @@ TEST(ObjScene, MissingLibrariesAndNamesGoGreyWithAWarning) {
   EXPECT_EQ(scene.materials[scene.polygons[1].material].name, "lamp");
   EXPECT_EQ(scene.materials[scene.polygons[2].material].name, "grey (no material)");
   EXPECT_TRUE(contains(scene.warnings, "gone.mtl: cannot open material library"));
-  EXPECT_TRUE(contains(scene.warnings, "line 9: material 'nowhere' is in none of lib.mtl, "
-                                       "gone.mtl: its 1 face is grey"));
+  EXPECT_TRUE(contains(scene.warnings,
+                       "line 9: material 'nowhere' is in none of lib.mtl, "
+                       "gone.mtl: its 1 face is grey"));
   EXPECT_TRUE(contains(scene.warnings, "1 face before the first usemtl"));
   // A scene file's "material" replaces the OBJ's own: the libraries are not read.
-  write(dir / "s.json", R"({"materials": {"m": {}}, "objects": [{"mesh": "a.obj", "material": "m"}]})");
+  write(dir / "s.json",
+        R"({"materials": {"m": {}}, "objects": [{"mesh": "a.obj", "material": "m"}]})");
   for (const std::string& w : load_scene(dir / "s.json").warnings)
     EXPECT_EQ(w.find("gone.mtl"), std::string::npos) << w;
   // Library names with spaces; a malformed library is an error naming its line.
