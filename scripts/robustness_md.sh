@@ -118,6 +118,13 @@ A user's own scene (`tests/scene/mtl_test.cpp`, on a room written as Blender wri
 | nothing emits (no emission, no Ke, no point light) | a warning: "nothing emits light ... every result is black" |
 | previews at exposure 0 were washed out (walls of B 1 to 2 clipped at 1) | the exposure is chosen from the image (its 95th-percentile pixel white) unless `--exposure` is given; the summary line says which |
 
+A newcomer's first command: `make demo` installed clang, clang-format, LLVM, GoogleTest and
+Google Benchmark and compiled every test and benchmark it never ran. It now installs the
+packages the executable needs (`scripts/install-deps.sh run`) and builds the executable alone,
+with Ninja and unity builds of the modules; `make test` installs and builds the rest.
+`bench/fresh_machine.sh` times both on a new Debian in a chroot, and an earlier commit's
+`make demo` for the ratio: [bench/results/fresh_machine.md](../bench/results/fresh_machine.md).
+
  `tests/cli/durability_test.cpp` kills large renders at a dozen moments of their run and
 checks that the previous image is intact, that two processes writing one output leave one whole
 file, that solve, probe and every render method give byte-identical files for 1, 2 and 4
