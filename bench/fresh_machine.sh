@@ -104,11 +104,13 @@ minutes() { python3 -c "print(f'{$1 / 60:.0f}')"; }
   echo "and builds the executable alone, with Ninja and unity builds of the modules."
 } >"$out"
 
-python3 - "$(minutes "$demo_total")" "$(minutes "$test_total")" <<'PY'
+python3 - "$(minutes "$demo_total")" "$(minutes "$test_total")" "${test_result//_/ }" <<'PY'
 import re, sys
-demo, test = sys.argv[1], sys.argv[2]
+demo, test, result = sys.argv[1], sys.argv[2], sys.argv[3]
 text = open("README.md").read()
-line = (f"On a fresh machine `make demo` took {demo} minutes and `make test` {test} "
+found = re.search(r"(\d+) tests failed out of (\d+)", result)
+failed = f", with {found[1]} of its {found[2]} tests failing there" if found and found[1] != "0" else ""
+line = (f"On a fresh machine `make demo` took {demo} minutes and `make test` {test}{failed} "
         "([bench/results/fresh_machine.md](bench/results/fresh_machine.md)).")
 text = re.sub(r"(<!-- fresh machine: begin -->\n).*?(\n<!-- fresh machine: end -->)",
               lambda m: m.group(1) + line + m.group(2), text, flags=re.S)

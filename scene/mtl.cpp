@@ -224,7 +224,6 @@ Material translate(const MtlStatements& s, const std::string& file,
     m.reflectance *= scale;
     m.specular *= scale;
   }
-  if (m.gloss > 0 && !m.is_mirror()) m.gloss = 0;
   return m;
 }
 

@@ -138,11 +138,8 @@ expect_one_line unwritable.err "^radiosity: error: /proc/no-such-folder/sweep/re
 KEPT_RENDERS="^$RADIOSITY render .* -o kept\.exr"
 kill_rank_midway() {  # RANK
   local pid rank
-  # mpirun follows its SIGTERM with a SIGKILL after odls_base_sigkill_timeout (1 s): on a loaded
-  # machine the root could be killed before it printed its line (seen in a chroot with the rest
-  # of the suite running beside it). Ten seconds change nothing else.
-  mpi --mca odls_base_sigkill_timeout 10 -n 3 "$RADIOSITY" render "$SCENE" --solution sol.vtp \
-    --width 160 --height 160 --tolerance 0.002 -o kept.exr 2>"killed$1.err" &
+  mpi -n 3 "$RADIOSITY" render "$SCENE" --solution sol.vtp --width 160 --height 160 \
+    --tolerance 0.002 -o kept.exr 2>"killed$1.err" &
   local launcher=$!
   # Wait until the renders run (their progress is not printed: poll the processes).
   for _ in $(seq 100); do
