@@ -33,6 +33,9 @@ namespace rad::mesh_formats {
 std::string read_model_file(const std::filesystem::path& file, const std::string& what,
                             const std::string& where, InputFiles* files);
 
+/// The file's extension in lower case (".obj").
+std::string lower_extension(const std::filesystem::path& file);
+
 /// Faces as vertex lists, in file order.
 using Faces = std::vector<std::vector<Vec3>>;
 
@@ -101,6 +104,9 @@ class Words {
   explicit Words(std::string_view line) : line_(line) {}
   /// The next word, or false at the end of the line.
   bool next(std::string_view& word);
+  /// What is left of the line, blanks trimmed at both ends: a name that may hold spaces
+  /// ("usemtl Wall inner", "newmtl My Material").
+  std::string_view rest() const;
 
  private:
   std::string_view line_;

@@ -5,7 +5,6 @@
 // are geometry a user may have expected to see.
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <map>
 #include <string>
 
@@ -16,30 +15,13 @@ namespace rad::mesh_formats {
 
 namespace {
 
-/// The rest of a line after its keyword, blanks trimmed: a material's name may hold spaces.
-std::string_view rest_of_line(std::string_view line, std::string_view keyword) {
-  std::string_view rest = line.substr(line.find(keyword) + keyword.size());
-  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; };
-  while (!rest.empty() && blank(rest.front())) rest.remove_prefix(1);
-  while (!rest.empty() && blank(rest.back())) rest.remove_suffix(1);
-  return rest;
-}
-
-bool ends_with_mtl(std::string_view word) {
-  if (word.size() < 4) return false;
-  std::string ext(word.substr(word.size() - 4));
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".mtl";
-}
-
 /// `mtllib a.mtl b.mtl` names several libraries; a single name with spaces is one library
 /// (exporters write "mtllib My Room.mtl"): the words are libraries only when each ends in .mtl.
 std::vector<std::string> library_names(std::string_view rest) {
   std::vector<std::string> names;
   Words words(rest);
   for (std::string_view word; words.next(word);) {
-    if (!ends_with_mtl(word)) return {std::string(rest)};
+    if (lower_extension(std::filesystem::path(word)) != ".mtl") return {std::string(rest)};
     names.emplace_back(word);
   }
   return names;
@@ -91,12 +73,12 @@ Faces read_obj(const MeshSource& source, std::vector<std::string>& warnings,
       soup.end_face();
       materials.face_name.push_back(current_material);
     } else if (keyword == "mtllib") {
-      for (std::string& name : library_names(rest_of_line(line, keyword))) {
+      for (std::string& name : library_names(words.rest())) {
         materials.libraries.push_back(std::move(name));
         materials.library_line.push_back(lines.number());
       }
     } else if (keyword == "usemtl") {
-      const std::string name(rest_of_line(line, keyword));
+      const std::string name(words.rest());
       const auto [known, added] =
           name_index.try_emplace(name, static_cast<int>(materials.names.size()));
       current_material = known->second;

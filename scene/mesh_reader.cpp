@@ -10,7 +10,7 @@
 #include "scene/mesh_formats.h"
 
 namespace rad {
-namespace {
+namespace mesh_formats {
 
 std::string lower_extension(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
@@ -18,10 +18,6 @@ std::string lower_extension(const std::filesystem::path& file) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
-
-}  // namespace
-
-namespace mesh_formats {
 
 std::string read_model_file(const std::filesystem::path& file, const std::string& what,
                             const std::string& where, InputFiles* files) {
@@ -49,6 +45,8 @@ std::string read_model_file(const std::filesystem::path& file, const std::string
 }
 
 }  // namespace mesh_formats
+
+using mesh_formats::lower_extension;
 
 bool is_supported_mesh_extension(const std::filesystem::path& file) {
   const std::string ext = lower_extension(file);

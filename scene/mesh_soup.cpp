@@ -107,6 +107,13 @@ bool Words::next(std::string_view& word) {
   return true;
 }
 
+std::string_view Words::rest() const {
+  std::string_view rest = line_;
+  while (!rest.empty() && is_blank(rest.front())) rest.remove_prefix(1);
+  while (!rest.empty() && is_blank(rest.back())) rest.remove_suffix(1);
+  return rest;
+}
+
 std::optional<double> parse_real(std::string_view word) {
   if (!word.empty() && word.front() == '+') word.remove_prefix(1);
   double value = 0;

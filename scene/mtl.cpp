@@ -60,7 +60,7 @@ class MtlParser {
       Words words(line);
       std::string_view keyword;
       if (!words.next(keyword)) continue;
-      statement(keyword, line, words);
+      statement(keyword, words);
     }
     return std::move(materials_);
   }
@@ -108,14 +108,10 @@ class MtlParser {
     return materials_.back();
   }
 
-  void statement(std::string_view keyword, std::string_view line, Words& words) {
+  void statement(std::string_view keyword, Words& words) {
     if (keyword == "newmtl") {
-      std::string_view name = line.substr(line.find(keyword) + keyword.size());
-      const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; };
-      while (!name.empty() && blank(name.front())) name.remove_prefix(1);
-      while (!name.empty() && blank(name.back())) name.remove_suffix(1);
       MtlStatements statements;
-      statements.name = name;
+      statements.name = words.rest();
       statements.line = lines_.number();
       materials_.push_back(std::move(statements));
     } else if (keyword == "Kd") {
