@@ -62,6 +62,9 @@ void run_solve(const SolveOptions& o) {
                     ? ""
                     : " + redirected by glossy surfaces, not carried " + rgb(s.redirected))
             << "\n"
+            << "solution's own error: every element within " << rgb(s.error_bound)
+            << " W/m^2 of the exact solution of its discrete system (certified; the light not "
+               "yet shot, not the meshing: docs/algorithms.md)\n"
             << "wrote " << o.output << "\n";
 }
 

@@ -46,10 +46,11 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SolverSettings, patch_size, element_levels, r
                                    refine_passes, min_element_size, unshot_fraction, max_shots,
                                    visibility_samples, seed)
 // Not the seconds: the file is byte-identical from run to run and for any thread count.
-// With defaults: a file written before "redirected" existed reads it as 0.
+// With defaults: a file written before "redirected" existed reads it as 0, one before
+// "error_bound" as -1 (not known).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SolveStats, shots, patches, elements, refined,
                                                 emitted, absorbed, escaped, unshot, redirected,
-                                                unshot_fraction, converged)
+                                                unshot_fraction, converged, error_bound)
 
 namespace {
 

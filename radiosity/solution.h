@@ -103,6 +103,14 @@ struct SolveStats {
   Rgb redirected = Rgb::Zero();  ///< Reflected by glossy surfaces, not carried (0 without any)
   double unshot_fraction = 0;    ///< sum(unshot) / sum(emitted)
   bool converged = false;        ///< Stopped by unshot_fraction rather than max_shots.
+  /// A certified bound, per channel, on the solve's own error: max over the elements of
+  /// |B* - B|, with B* the exact solution of the discrete system the solver sets up (its
+  /// elements, patches and measured form factors) and B what it stopped at. It covers the
+  /// iteration's error (the light not yet shot), not the discretisation's (elements taken as
+  /// uniform, shadow rays' sampling, the local pass's point against an element's mean): see
+  /// docs/algorithms.md, "The solution's own error". Negative: not known (a file written before
+  /// the bound was kept).
+  Rgb error_bound = Rgb::Constant(-1);
   /// (receiver point, shooter) pairs whose visibility was needed, and of those the ones no
   /// polygon could hide (no rays cast). Counted by the solve, not saved in the solution file.
   long long visibility_pairs = 0, unhidden_pairs = 0;

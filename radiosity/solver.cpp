@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "geometry/lambert.h"
+#include "radiosity/error_bound.h"
 #include "radiosity/progressive_solver.h"
 
 namespace rad {
@@ -152,6 +153,16 @@ Solution ProgressiveSolver::finish(double seconds) {
   for (int c = 0; c < 3; ++c) {
     solution_.ambient[c] = stats().unshot[c] / total_area / (1 - area_rho[c] / total_area);
   }
+  // The iteration's error (radiosity/error_bound.h): every live leaf's unshot radiosity, against
+  // the scene's largest reflectance. (A shooter is seen as a weighted mean of its leaves, so the
+  // leaves' largest bounds what any receiver still has to get; buried leaves shoot nothing.)
+  Rgb largest_unshot = Rgb::Zero(), largest_reflectance = Rgb::Zero();
+  for (const int e : leaves_) {
+    if (!buried_[e]) largest_unshot = largest_unshot.cwiseMax(leaf_unshot_[e].cwiseAbs());
+  }
+  for (const Material& m : scene_.materials)
+    largest_reflectance = largest_reflectance.cwiseMax(m.reflectance);
+  stats().error_bound = iteration_error_bound(largest_unshot, largest_reflectance);
   stats().patches = static_cast<int>(patches().size());
   stats().elements = static_cast<int>(leaves_.size());
   stats().seconds = seconds;
