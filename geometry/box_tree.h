@@ -99,6 +99,29 @@ class BoxTree {
     }
   }
 
+  /// Calls visit(item) for every item whose box `accept` takes, opening only the nodes whose
+  /// boxes it takes: for a test that holds of a box whenever it holds of a box inside it (a
+  /// half-space that a box reaches into), in O(log n + k) where a query box will not do.
+  template <class Accept, class Visit>
+  void select(Accept&& accept, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    int stack[2 * kMaxDepth + 2];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (!accept(node.box)) continue;
+      if (node.left < 0) {
+        for (int i = node.first; i < node.first + node.count; ++i) {
+          if (accept(boxes_[items_[i]])) visit(items_[i]);
+        }
+      } else {
+        stack[top++] = node.left + 1;
+        stack[top++] = node.left;
+      }
+    }
+  }
+
   /// Whether any item's box intersects `query`; stops at the first.
   bool any(const Box& query) const {
     return any_of(query, [](int) { return true; });

@@ -26,21 +26,22 @@ namespace rad {
 /// store is 0.25 GB, 60,000 page faults in 4 KiB pages, all taken in the serial part of a shot.
 class FormFactorStore {
  public:
-  static constexpr size_t block = 4096;
+  static constexpr size_t block = 512;
 
   explicit FormFactorStore(size_t budget) : budget_(budget) {}
 
   /// Makes room for `elements` receivers of `patch` (of `patches`), unless the budget is spent.
   /// Serial: parallel loops only read and fill slots.
   void grow(int patch, size_t patches, size_t elements) {
-    if (stored_.size() < patches) stored_.resize(patches);
-    std::vector<Eigen::Vector3f*>& blocks = stored_[patch];
-    while (blocks.size() * block < elements && bytes_ + block_bytes <= budget_) {
-      Eigen::Vector3f* values = new_block();
-      if (values == nullptr) return;
-      std::fill_n(values, block, Eigen::Vector3f::Constant(std::nanf("")));
-      blocks.push_back(values);
-      bytes_ += block_bytes;
+    for (size_t b = 0; b * block < elements; ++b) {
+      if (!add_block(patch, patches, b)) return;
+    }
+  }
+  /// Makes room for the receivers `which` of `patch` only (the blocks that hold them), unless
+  /// the budget is spent: a shot that reaches a few receivers stores no others' slots.
+  void grow(int patch, size_t patches, const std::vector<int>& which) {
+    for (const int e : which) {
+      if (!add_block(patch, patches, static_cast<size_t>(e) / block)) return;
     }
   }
   /// The stored value of (patch, element), if any.
@@ -63,7 +64,25 @@ class FormFactorStore {
     if (static_cast<size_t>(patch) >= stored_.size()) return nullptr;
     const auto& blocks = stored_[patch];
     const size_t b = static_cast<size_t>(element) / block;
-    return b < blocks.size() ? &blocks[b][static_cast<size_t>(element) % block] : nullptr;
+    return b < blocks.size() && blocks[b] != nullptr
+               ? &blocks[b][static_cast<size_t>(element) % block]
+               : nullptr;
+  }
+
+  /// Block b of `patch` (of `patches`), made if it is not there yet and the budget allows;
+  /// false when the budget or the system's memory is spent.
+  bool add_block(int patch, size_t patches, size_t b) {
+    if (stored_.size() < patches) stored_.resize(patches);
+    std::vector<Eigen::Vector3f*>& blocks = stored_[patch];
+    if (b < blocks.size() && blocks[b] != nullptr) return true;
+    if (bytes_ + block_bytes > budget_) return false;
+    Eigen::Vector3f* values = new_block();
+    if (values == nullptr) return false;
+    std::fill_n(values, block, Eigen::Vector3f::Constant(std::nanf("")));
+    if (blocks.size() <= b) blocks.resize(b + 1, nullptr);
+    blocks[b] = values;
+    bytes_ += block_bytes;
+    return true;
   }
 
   /// A block from the current arena, a new arena when it is full; null when the system has
@@ -88,7 +107,7 @@ class FormFactorStore {
 
   size_t budget_;
   size_t bytes_ = 0;
-  std::vector<std::vector<Eigen::Vector3f*>> stored_;  ///< Per patch, its blocks
+  std::vector<std::vector<Eigen::Vector3f*>> stored_;  ///< Per patch, its blocks (null: none)
   std::vector<std::unique_ptr<char, Unmap>> arenas_;
   size_t arena_used_ = 0;  ///< Bytes of the last arena handed out
 };

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "radiosity/mesher.h"
 #include "radiosity/near_field.h"
 #include "radiosity/random_stream.h"
+#include "radiosity/receiver_culling.h"
 #include "radiosity/shooter.h"
 #include "radiosity/solution.h"
 #include "radiosity/solver.h"
@@ -157,10 +159,14 @@ class ProgressiveSolver {
            rho;
   }
 
-  /// One shot of patch `shooter`'s unshot radiosity to every leaf.
+  /// One shot of patch `shooter`'s unshot radiosity to every leaf that can receive it.
   void shoot(int shooter);
 
-  /// Each leaf takes in this shot's irradiance (gathered in pieces when it is near the
+  /// The leaves of the patches in receiver_patches_, in index order, into receivers_: a shot's
+  /// receivers (the others get exactly nothing from it: radiosity/receiver_culling.h).
+  void collect_receivers();
+
+  /// Each receiver takes in this shot's irradiance (gathered in pieces when it is near the
   /// shooter, else `far` x its form factor; at a filter's back delta x back_ff_) in parallel.
   /// The sums do not depend on the thread count: the power kept and absorbed over fixed blocks
   /// of leaves added in block order, each patch's unshot radiosity serially in element order
@@ -234,6 +240,9 @@ class ProgressiveSolver {
   std::vector<std::pair<int, Rgb>> to_patch_;  ///< distribute()'s per-leaf shares of unshot
   std::vector<char> near_;  ///< This shot: the element is in the shooter's near field
   std::vector<int> leaves_;
+  std::optional<ReceiverCulling> culling_;  ///< Made with the patches
+  std::vector<int> receiver_patches_;       ///< This shot's: the patches that can receive it...
+  std::vector<int> receivers_;              ///< ...and their leaves, in index order
   std::vector<Rgb> ff_;               ///< This shot's visible form factor per element, per channel.
   std::vector<Rgb> back_ff_;          ///< The same at the backs of filters' elements...
   std::vector<Rgb> back_irradiance_;  ///< ...and what has reached those backs so far.

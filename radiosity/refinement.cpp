@@ -67,7 +67,7 @@ void ProgressiveSolver::split_into(int e, std::vector<int>& children) {
 void ProgressiveSolver::refine_during_shot(int shooter, const Rgb& delta, int shot) {
   const Patch& source = patches()[shooter];
   const Sphere& sb = patch_bounds_[shooter];
-  std::vector<int> candidates = leaves_;
+  std::vector<int> candidates = receivers_;
   bool any_split = false;
   while (!candidates.empty()) {
     std::vector<char> split(candidates.size(), 0);
@@ -120,7 +120,10 @@ void ProgressiveSolver::refine_during_shot(int shooter, const Rgb& delta, int sh
     regather(children);
     candidates = std::move(children);
   }
-  if (any_split) leaves_ = solution_.leaves();
+  if (any_split) {
+    leaves_ = solution_.leaves();
+    collect_receivers();
+  }
 }
 
 void ProgressiveSolver::regather(const std::vector<int>& children) {
@@ -128,7 +131,7 @@ void ProgressiveSolver::regather(const std::vector<int>& children) {
   std::vector<Rgb> gathered(children.size(), Rgb::Zero()), back(children.size(), Rgb::Zero());
   for (size_t j = 0; j < patches().size(); ++j) {
     if (patches()[j].shot != Rgb::Zero())
-      store_.grow(static_cast<int>(j), patches().size(), elements().size());
+      store_.grow(static_cast<int>(j), patches().size(), children);
   }
   near_field_.grow(elements());
   tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
@@ -140,7 +143,7 @@ void ProgressiveSolver::regather(const std::vector<int>& children) {
     if (at_back) back[k] = rays_.point_light_irradiance(el.centroid, -n);
     for (size_t j = 0; j < solution_.patches.size(); ++j) {
       const Patch& p = solution_.patches[j];
-      if (p.shot == Rgb::Zero()) continue;
+      if (p.shot == Rgb::Zero() || !culling_->may_receive(el.patch, static_cast<int>(j))) continue;
       if (is_near(children[k], static_cast<int>(j), shot_spread_[j])) {
         const int e = children[k];
         gathered[k] += near_field_.gather(

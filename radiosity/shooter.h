@@ -59,6 +59,10 @@ class Shooter {
   /// builds a shaft (its `on_the_way`).
   bool something_on_the_way(const Vec3& x, int polygon, const Patch& shooter) const;
 
+  /// Whether the scene has mirror chains whose images a receiver may see the shooter in (then
+  /// a receiver behind the shooter's plane can still receive from it).
+  bool sees_images() const { return !chains_.empty(); }
+
   /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
   std::pair<long long, long long> counts() const { return {pairs_.load(), unhidden_.load()}; }
 

@@ -58,6 +58,11 @@ ProgressiveSolver::ProgressiveSolver(const RayCaster& caster, const SolverSettin
   }
   for (Element& e : elements()) e.radiosity = material(e.polygon).emission;
   near_field_ = NearField(patches().size(), elements());
+  std::vector<char> receives_at_back(patches().size());
+  for (size_t i = 0; i < patches().size(); ++i)
+    receives_at_back[i] = absorbs_at_back(patches()[i].polygon);
+  culling_.emplace(patches(), std::move(receives_at_back), scene_.tolerance().in_plane,
+                   !rays_.sees_images());
   shot_spread_.assign(patches().size(), 0.0);
   leaf_unshot_.resize(elements().size());
   leaf_shot_.assign(elements().size(), Rgb::Zero());
@@ -212,11 +217,13 @@ void ProgressiveSolver::shoot(int shooter) {
   shot_spread_[shooter] =
       near_field_.average_up(elements(), shooter, leaf_shot_, shot_node_spread_, buried_);
 
-  // Receive at every leaf's centroid; split where this shot is far from linear.
+  // Receive at the centroid of every leaf that can; split where this shot is far from linear.
   back_irradiance_.resize(elements().size(), Rgb::Zero());
-  receive(leaves_, shooter, shot);
+  culling_->receivers(shooter, receiver_patches_);
+  collect_receivers();
+  receive(receivers_, shooter, shot);
   // The far receivers see the shooter with the radiosity that keeps the shot's energy.
-  const Rgb far = near_field_.far_density(elements(), shooter, leaves_, near_, ff_,
+  const Rgb far = near_field_.far_density(elements(), shooter, receivers_, near_, ff_,
                                           live_area_[shooter], shooting_, delta);
   if (refinement_enabled()) refine_during_shot(shooter, delta, shot);
 
@@ -225,16 +232,23 @@ void ProgressiveSolver::shoot(int shooter) {
   ++stats().shots;
 }
 
+void ProgressiveSolver::collect_receivers() {
+  receivers_.clear();
+  for (const int p : receiver_patches_)
+    near_field_.for_each_leaf(elements(), p, [&](int leaf) { receivers_.push_back(leaf); });
+  std::sort(receivers_.begin(), receivers_.end());
+}
+
 Rgb ProgressiveSolver::distribute(const Rgb& delta, const Rgb& far) {
-  to_patch_.resize(leaves_.size());
+  to_patch_.resize(receivers_.size());
   struct Sums {
     Rgb kept = Rgb::Zero(), absorbed = Rgb::Zero(), redirected = Rgb::Zero();
   };
   const Sums sums = tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<size_t>(0, leaves_.size(), 512), Sums{},
+      tbb::blocked_range<size_t>(0, receivers_.size(), 512), Sums{},
       [&](const tbb::blocked_range<size_t>& range, Sums sum) {
         for (size_t k = range.begin(); k != range.end(); ++k)
-          to_patch_[k] = take_in(leaves_[k], delta, far, sum.kept, sum.absorbed, sum.redirected);
+          to_patch_[k] = take_in(receivers_[k], delta, far, sum.kept, sum.absorbed, sum.redirected);
         return sum;
       },
       [](const Sums& a, const Sums& b) {
@@ -242,7 +256,7 @@ Rgb ProgressiveSolver::distribute(const Rgb& delta, const Rgb& far) {
       });
   stats().absorbed += sums.absorbed;
   stats().redirected += sums.redirected;
-  for (size_t k = 0; k < leaves_.size(); ++k) {
+  for (size_t k = 0; k < receivers_.size(); ++k) {
     if (to_patch_[k].first >= 0) patches()[to_patch_[k].first].unshot += to_patch_[k].second;
   }
   return sums.kept + sums.redirected;  // what the elements took in, or turned into lobes
@@ -276,7 +290,7 @@ std::pair<int, Rgb> ProgressiveSolver::take_in(int e, const Rgb& delta, const Rg
 }
 
 void ProgressiveSolver::receive(const std::vector<int>& which, int shooter, int shot) {
-  store_.grow(shooter, patches().size(), elements().size());
+  store_.grow(shooter, patches().size(), which);
   near_field_.grow(elements());
   ff_.resize(elements().size(), Rgb::Zero());
   near_incoming_.resize(elements().size(), Rgb::Zero());

@@ -96,8 +96,8 @@ TEST(ErrorBound, ContainsTheDistanceToTheSameSystemSolvedFurther) {
     ASSERT_EQ(s.leaves(), converged.leaves());
     Rgb distance = Rgb::Zero();
     for (const int e : s.leaves()) {
-      distance = distance.cwiseMax(
-          (s.elements[e].radiosity - converged.elements[e].radiosity).cwiseAbs());
+      distance =
+          distance.cwiseMax((s.elements[e].radiosity - converged.elements[e].radiosity).cwiseAbs());
     }
     for (int c = 0; c < 3; ++c) {
       EXPECT_LE(distance[c], s.stats.error_bound[c] + converged.stats.error_bound[c])

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace rad {
 namespace {
 
@@ -46,11 +48,32 @@ TEST(FormFactorStore, GrowingKeepsWhatWasStored) {
   FormFactorStore store(size_t(1) << 30);
   store.grow(0, 1, 10);
   store.put(0, 3, Rgb(0.5, 0.5, 0.5));
-  for (int n = 11; n < 5 * static_cast<int>(block); n += 997) store.grow(0, 1, n);
+  for (int n = 11; n < 5 * static_cast<int>(block); n += static_cast<int>(block) / 3 + 1)
+    store.grow(0, 1, n);
   Rgb ff;
   ASSERT_TRUE(store.find(0, 3, &ff));
   EXPECT_EQ(ff, Rgb(0.5, 0.5, 0.5));
   EXPECT_EQ(store.bytes(), 5 * block_bytes);
+}
+
+TEST(FormFactorStore, AShotThatReachesAFewReceiversStoresOnlyTheirBlocks) {
+  // A floor patch's shot reaches the lamp's elements alone, at the end of the element list:
+  // one block for them, not every block before them.
+  FormFactorStore store(size_t(1) << 30);
+  const int far = static_cast<int>(7 * block + 5);
+  store.grow(0, 1, std::vector<int>{far, far + 1});
+  EXPECT_EQ(store.bytes(), block_bytes);
+  store.put(0, far, Rgb(0.25, 0.5, 0.75));
+  store.put(0, 3, Rgb(1, 1, 1));  // no room made for the first block: not kept
+  Rgb ff;
+  ASSERT_TRUE(store.find(0, far, &ff));
+  EXPECT_EQ(ff, Rgb(0.25, 0.5, 0.75));
+  EXPECT_FALSE(store.find(0, 3, &ff));
+  store.grow(0, 1, std::vector<int>{3, far});  // the first block now, the other kept
+  EXPECT_EQ(store.bytes(), 2 * block_bytes);
+  ASSERT_TRUE(store.find(0, far, &ff));
+  EXPECT_EQ(ff, Rgb(0.25, 0.5, 0.75));
+  EXPECT_FALSE(store.find(0, 3, &ff));
 }
 
 TEST(FormFactorStore, NothingIsKeptPastTheBudget) {
