@@ -25,10 +25,7 @@ BoxTree<3> polygon_boxes(const Scene& scene) {
 }  // namespace
 
 ShadowCulling::ShadowCulling(const Scene& scene, double pad)
-    : scene_(scene),
-      boxes_(polygon_boxes(scene)),
-      pad_(pad),
-      in_plane_(scene.tolerance().in_plane) {}
+    : scene_(scene), boxes_(polygon_boxes(scene)), pad_(pad) {}
 
 bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector<Vec3>& corners,
                                   int shooter, const std::function<bool()>& on_the_way) const {
@@ -49,27 +46,11 @@ bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector
     // x and every corner strictly on one side: no segment between them meets the plane.
     const double side = polygon.normal.dot(x - origin);
     bool one_side = std::abs(side) > pad_;
-    // Or one end in the plane and the other end strictly off it: a segment meets the plane
-    // at its end alone (within in_plane / pad of its length of it, far inside the rays'
-    // offset, where a shadow ray counts no hit). The case of a tessellated floor: its
-    // triangles are all in the plane of a patch of the floor, and every pair asked the shaft
-    // about each triangle between the two ends.
-    bool ends_in_plane = true;
-    for (size_t i = 0; i < corners.size(); ++i) {
+    for (size_t i = 0; i < corners.size() && one_side; ++i) {
       const double s = polygon.normal.dot(corners[i] - origin);
-      one_side = one_side && std::abs(s) > pad_ && (s > 0) == (side > 0);
-      ends_in_plane = ends_in_plane && std::abs(s) <= in_plane_;
+      one_side = std::abs(s) > pad_ && (s > 0) == (side > 0);
     }
-    if (one_side || (ends_in_plane && std::abs(side) > pad_)) return false;
-    if (std::abs(side) <= in_plane_) {  // x in the plane: the corners all off it, one side
-      const bool first_above = polygon.normal.dot(corners.front() - origin) > 0;
-      bool corners_off = true;
-      for (size_t i = 0; i < corners.size() && corners_off; ++i) {
-        const double s = polygon.normal.dot(corners[i] - origin);
-        corners_off = std::abs(s) > pad_ && (s > 0) == first_above;
-      }
-      if (corners_off) return false;
-    }
+    if (one_side) return false;
     if (!shaft) {
       if (on_the_way && on_the_way()) return true;
       shaft.emplace(x, corner_box, pad_);

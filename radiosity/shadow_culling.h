@@ -19,10 +19,8 @@ class ShadowCulling {
   ShadowCulling(const Scene& scene, double pad);
 
   /// False only when no polygon other than the receiver's and the shooter's can meet a segment
-  /// from x to the convex shooter outline `corners` away from its ends: every polygon either
-  /// has x and all the corners strictly on one side of its plane (by more than pad), or one end
-  /// in its plane (to the scene's in-plane tolerance) and the other strictly off it, or misses
-  /// the shaft from x
+  /// from x to the convex shooter outline `corners`: every polygon either has x and all the
+  /// corners strictly on one side of its plane (by more than pad), or misses the shaft from x
   /// to the corners' box (geometry/shaft.h, padded). Then no segment is blocked: each lies in
   /// the shaft, and a segment meets a plane that does not separate its ends only where it
   /// lies in it. The receiver's own plane holds x (a segment leaves it there), the shooter's
@@ -46,7 +44,6 @@ class ShadowCulling {
   const Scene& scene_;
   BoxTree<3> boxes_;  ///< Of the scene's polygons
   double pad_;
-  double in_plane_;  ///< The scene's Tolerance::in_plane
 };
 
 }  // namespace rad

@@ -11,7 +11,6 @@
 #include "radiosity/shooter.h"
 #include "scene/ray_caster.h"
 #include "tests/random_scenes.h"
-#include "tests/scene_builder.h"
 
 namespace rad {
 namespace {
@@ -136,48 +135,6 @@ TEST(ShadowCulling, ARayToTheShootersCentreStandsForTheScanOnlyWhenTheScanAgrees
   // Both answers occur: the shortcut takes many pairs, and leaves others to the scan.
   EXPECT_GT(shortcut, 200);
   EXPECT_GT(scanned, 50);
-}
-
-TEST(ShadowCulling, ATessellatedFloorHidesNothingFromItselfAndABlockerStillHides) {
-  // A floor of 6 x 6 squares, each two triangles, under a lamp: a segment from the lamp to a
-  // piece of the floor meets the floor's plane only at its end, so no floor triangle may hide
-  // it (the scan used to ask the shaft about every triangle between). A tile hung between
-  // them still hides what passes through it: every pair whose segments cross it is kept.
-  test::SceneBuilder b;
-  const int white = b.material("white", Rgb::Constant(0.5), Rgb::Zero());
-  const int lamp = b.material("lamp", Rgb::Zero(), Rgb::Constant(10));
-  const int n = 6;
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const Vec3 a(i, j, 0), c(i + 1, j + 1, 0);
-      b.polygon({a, Vec3(i + 1, j, 0), c}, white);
-      b.polygon({a, c, Vec3(i, j + 1, 0)}, white);
-    }
-  }
-  const int light = b.rectangle(2.5, 3.5, 2.5, 3.5, 3, true, lamp);
-  const Scene open = b.scene();
-  const int tile = b.rectangle(0.5, 1.5, 0.5, 1.5, 1, true, white);
-  const Scene blocked = b.scene();
-  const std::vector<Patch> floor = make_patches(open, 0.1);
-  const Vec3 x(3, 3, 3);  // the lamp's centre
-  long kept = 0;
-  for (const Scene* scene : {&open, &blocked}) {
-    const ShadowCulling culling(*scene, 1e-5 * scene->bounds().diagonal());
-    for (const Patch& p : floor) {
-      if (p.polygon == light || p.polygon == tile) continue;
-      const bool hidden = culling.may_be_hidden(x, light, p.corners, p.polygon);
-      if (scene == &open) {
-        EXPECT_FALSE(hidden) << "a floor piece of polygon " << p.polygon;
-        continue;
-      }
-      kept += hidden;
-      for (const Vec3& y : p.corners) {
-        EXPECT_TRUE(hidden || !segment_crosses(scene->polygons[tile], x, y))
-            << "culled, but the tile is on the way to polygon " << p.polygon;
-      }
-    }
-  }
-  EXPECT_GT(kept, 0);
 }
 
 }  // namespace
