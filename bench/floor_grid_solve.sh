@@ -14,8 +14,8 @@ build=${1:-build}
 base=${2:-89600a6}
 pairs=${3:-2}
 shift $(($# < 3 ? $# : 3))
-cells=("${@:-50 100}")
-[ $# -gt 0 ] || cells=(50 100)
+cells=(50 100)
+[ $# -eq 0 ] || cells=("$@")
 scratch=out/floor-grid-solve
 mkdir -p bench/results "$scratch"
 earlier=$(earlier_radiosity "$base")
