@@ -19,11 +19,13 @@ namespace rad {
 /// with the same jitter, and no rays. Single precision (relative 6e-8, far below the shadow
 /// rays' sampling error). Kept while it fits in `budget` bytes; past it, patches measure afresh.
 ///
-/// A patch's values sit in fixed blocks of `block` elements, added as elements are made and
-/// never moved: a split adds a few elements, and one array per patch resized to the element
-/// count was copied and faulted in afresh as it grew. The blocks are cut from arenas of huge
-/// pages where the kernel offers them (transparent huge pages on request): the Cornell box's
-/// store is 0.25 GB, 60,000 page faults in 4 KiB pages, all taken in the serial part of a shot.
+/// A patch's values sit in fixed blocks of `block` elements, made only for the receivers its
+/// shots and re-gathers reach, and never moved: a split adds a few elements, and one array per
+/// patch resized to the element count was copied and faulted in afresh as it grew; and a floor
+/// triangle that reaches only the lamp's elements needs one small block, not all of them. The
+/// blocks are cut from arenas of huge pages where the kernel offers them (transparent huge
+/// pages on request): the Cornell box's store, every block made, was 0.25 GB, 60,000 page
+/// faults in 4 KiB pages, all taken in the serial part of a shot.
 class FormFactorStore {
  public:
   static constexpr size_t block = 512;

@@ -24,8 +24,7 @@ double height(const Vec3& x, const Vec3& origin, const Vec3& n) { return n.dot(x
 }  // namespace
 
 ReceiverCulling::ReceiverCulling(const std::vector<Patch>& patches,
-                                 std::vector<char> receives_at_back, double in_plane,
-                                 bool enabled)
+                                 std::vector<char> receives_at_back, double in_plane, bool enabled)
     : patches_(patches),
       receives_at_back_(std::move(receives_at_back)),
       in_plane_(in_plane),
@@ -36,8 +35,7 @@ double ReceiverCulling::highest_above(const Eigen::AlignedBox3d& box, int shoote
   // A linear function's largest value over a box is at the corner that each axis picks.
   const Patch& s = patches_[shooter];
   double h = -s.normal.dot(s.corners[0]);
-  for (int i = 0; i < 3; ++i)
-    h += std::max(s.normal[i] * box.min()[i], s.normal[i] * box.max()[i]);
+  for (int i = 0; i < 3; ++i) h += std::max(s.normal[i] * box.min()[i], s.normal[i] * box.max()[i]);
   return h;
 }
 
@@ -68,10 +66,11 @@ void ReceiverCulling::receivers(int shooter, std::vector<int>& out) const {
   // A box wholly at or behind the shooter's plane (to half the tolerance: the rounding of the
   // box's corners against the patch's own is far below it) holds no receiver that
   // may_receive() would take: its patches' corners all lie within the tolerance.
-  tree_.select([&](const Eigen::AlignedBox3d& box) { return highest_above(box, shooter) > 0.5 * in_plane_; },
-               [&](int p) {
-                 if (may_receive(p, shooter)) out.push_back(p);
-               });
+  tree_.select(
+      [&](const Eigen::AlignedBox3d& box) { return highest_above(box, shooter) > 0.5 * in_plane_; },
+      [&](int p) {
+        if (may_receive(p, shooter)) out.push_back(p);
+      });
   std::sort(out.begin(), out.end());
 }
 

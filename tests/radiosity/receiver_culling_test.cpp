@@ -54,15 +54,15 @@ TEST(ReceiverCulling, WhatItLeavesOutReceivesNothingAndTheTreeAgreesWithThePairs
           continue;
         }
         if (++culled % 5 != 0) continue;  // the form factors of every fifth pair left out
-        for (int k = 0; k < 4; ++k) {  // its corners and points inside
+        for (int k = 0; k < 4; ++k) {     // its corners and points inside
           const Vec3 x = k < static_cast<int>(patches[r].corners.size())
                              ? patches[r].corners[k] + 1e-3 * (point_in(patches[r].corners, rng) -
-                                                                patches[r].corners[k])
+                                                               patches[r].corners[k])
                              : point_in(patches[r].corners, rng);
-          const Rgb ff = rays.visible_form_factor(x, patches[r].normal, patches[r].polygon,
-                                                  patches[s], 1);
-          ASSERT_LE(ff.maxCoeff(), 1e-12) << "seed " << seed << ": patch " << r
-                                          << " left out of patch " << s << "'s shot";
+          const Rgb ff =
+              rays.visible_form_factor(x, patches[r].normal, patches[r].polygon, patches[s], 1);
+          ASSERT_LE(ff.maxCoeff(), 1e-12)
+              << "seed " << seed << ": patch " << r << " left out of patch " << s << "'s shot";
         }
       }
     }
