@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 
@@ -43,14 +44,10 @@ Scene load_scene_reporting(const std::string& path, InputFiles* files) {
   return scene;
 }
 
-namespace {
-
 double machine_memory() {
   return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
          static_cast<double>(::sysconf(_SC_PAGESIZE));
 }
-
-}  // namespace
 
 Solution load_solution_for(const Scene& scene, const std::string& scene_path,
                            const std::string& solution_path) {
@@ -131,27 +128,78 @@ double now_seconds() {
 }
 }  // namespace
 
+namespace {
+double progress_interval = 5;
+}  // namespace
+
+void set_progress_interval(double seconds) { progress_interval = seconds; }
+
+std::string duration_text(double seconds) {
+  const long long s = std::llround(std::max(0.0, seconds));
+  char text[48];
+  if (s < 60) {
+    std::snprintf(text, sizeof text, "%lld s", s);
+  } else if (s < 3600) {
+    std::snprintf(text, sizeof text, "%lld min %02lld s", s / 60, s % 60);
+  } else {
+    std::snprintf(text, sizeof text, "%lld h %02lld min", s / 3600, s / 60 % 60);
+  }
+  return text;
+}
+
 ProgressBar::ProgressBar(std::string label)
-    : label_(std::move(label)), enabled_(::isatty(STDERR_FILENO)) {}
+    : ProgressBar(std::move(label), std::cerr, ::isatty(STDERR_FILENO) != 0, progress_interval) {}
+
+ProgressBar::ProgressBar(std::string label, std::ostream& out, bool terminal, double interval)
+    : label_(std::move(label)),
+      out_(out),
+      terminal_(terminal),
+      interval_(interval),
+      stage_start_(now_seconds()) {}
 
 ProgressBar::~ProgressBar() { finish(); }
 
+std::string ProgressBar::time_left(double done, double now) const {
+  // The rate so far, once a second has passed and a hundredth is done: earlier it says little.
+  const double elapsed = now - stage_start_;
+  if (!(done >= 0.01 && done < 1) || elapsed < 1) return "";
+  const double left = elapsed * (1 - done) / done;
+  return left < 1 ? "under 1 s left" : "about " + duration_text(left) + " left";
+}
+
+void ProgressBar::stage(const std::string& label) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  label_ = label;
+  stage_start_ = now_seconds();
+}
+
 void ProgressBar::update(double done, const std::string& detail) {
-  if (!enabled_) return;
+  if (!terminal_ && !(interval_ > 0)) return;
   const std::lock_guard<std::mutex> lock(mutex_);
   const double t = now_seconds();
-  if (t - last_ < 0.1) return;
+  done = std::clamp(done, 0.0, 1.0);
+  const std::string left = time_left(done, t);
+  if (terminal_) {
+    if (t - last_ < 0.1) return;
+    last_ = t;
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(done * kWidth);
+    out_ << "\r" << label_ << " [" << std::string(filled, '#') << std::string(kWidth - filled, ' ')
+         << "] " << detail << (left.empty() ? "" : ", " + left) << "\x1b[K" << std::flush;
+    drawn_ = true;
+    return;
+  }
+  if (last_ < 0) last_ = stage_start_;  // the first line after one interval
+  if (t - last_ < interval_) return;
   last_ = t;
-  constexpr int kWidth = 30;
-  const int filled = static_cast<int>(std::clamp(done, 0.0, 1.0) * kWidth);
-  std::cerr << "\r" << label_ << " [" << std::string(filled, '#')
-            << std::string(kWidth - filled, ' ') << "] " << detail << "\x1b[K" << std::flush;
-  drawn_ = true;
+  out_ << label_ << ": " << static_cast<int>(100 * done) << "%, " << detail << ", "
+       << duration_text(t - stage_start_) << (left.empty() ? "" : ", " + left) << "\n"
+       << std::flush;
 }
 
 void ProgressBar::finish() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (drawn_) std::cerr << "\r\x1b[K" << std::flush;
+  if (drawn_) out_ << "\r\x1b[K" << std::flush;
   drawn_ = false;
 }
 

@@ -78,22 +78,47 @@ class ThreadLimit {
   std::unique_ptr<tbb::global_control> control_;
 };
 
-/// A one-line progress bar on stderr, drawn only when stderr is a terminal, at most 10 times a
-/// second; finish() clears it. update() may be called from several threads (the renders report
-/// from their workers).
+/// The machine's physical memory in bytes (0 when unknown). A command refuses, before the work,
+/// what would need more than half of it.
+double machine_memory();
+
+/// Where stderr is not a terminal (a log, a pipe, a batch job), ProgressBar prints a line every
+/// this many seconds; 0 prints none. The global option --progress sets it (default 5).
+void set_progress_interval(double seconds);
+
+/// "12 s", "3 min 20 s", "2 h 05 min": a duration for people.
+std::string duration_text(double seconds);
+
+/// Progress on stderr with an estimate of the time left (from the rate so far of `done`):
+/// on a terminal a one-line bar, redrawn at most 10 times a second, which finish() clears;
+/// elsewhere a whole line every set_progress_interval() seconds, so that a log shows a long
+/// job is alive. update() may be called from several threads (the renders report from their
+/// workers).
 class ProgressBar {
  public:
   explicit ProgressBar(std::string label);
+  /// The same, to `out`, drawn as on a terminal or not, with lines every `interval` seconds
+  /// (the tests' way in).
+  ProgressBar(std::string label, std::ostream& out, bool terminal, double interval);
   ~ProgressBar();
   /// `done` in [0, 1]; `detail` is shown after the bar.
   void update(double done, const std::string& detail);
+  /// A new stage of the work ("meshing", then "shooting"): its own label and its own clock
+  /// for the estimate.
+  void stage(const std::string& label);
   void finish();
 
  private:
+  /// "about 3 min left", or nothing while too little is done to tell.
+  std::string time_left(double done, double now) const;
+
   std::mutex mutex_;
   std::string label_;
-  bool enabled_;
-  double last_ = -1;
+  std::ostream& out_;
+  bool terminal_;
+  double interval_;
+  double stage_start_;
+  double last_ = -1;  ///< Last drawn (terminal) or printed (lines)
   bool drawn_ = false;
 };
 

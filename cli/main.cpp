@@ -107,7 +107,14 @@ int run_main(const rad::Job& job, int argc, char** argv) {
                "Turn every polygon's front side (reverse its vertex order): for a closed room "
                "modelled from outside, whose fronts face out of it (solve and render both need "
                "it: the solution is for the turned scene)");
-  app.fallthrough();  // --strict and --flip-normals may follow the subcommand too
+  double progress = 5;
+  app.add_option("--progress", progress,
+                 "Where stderr is not a terminal (a log, a pipe), a line of progress with the "
+                 "time left every this many seconds; 0: none (on a terminal a bar is drawn)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->check(rad::cli::kFinite)
+      ->capture_default_str();
+  app.fallthrough();  // the global options may follow the subcommand too
 
   rad::cli::Run run;
   rad::cli::add_info_command(app, run);
@@ -132,6 +139,7 @@ int run_main(const rad::Job& job, int argc, char** argv) {
   }
 
   rad::cli::set_scene_flags(strict, flip_normals);
+  rad::cli::set_progress_interval(progress);
   // The commands whose work is split over an MPI job's processes; the others are the root's.
   bool distributed = false;
   for (const char* name : {"render", "probe", "sweep"})

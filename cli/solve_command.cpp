@@ -11,6 +11,7 @@
 #include "formats/atomic_file.h"
 #include "formats/solution_io.h"
 #include "radiosity/solver.h"
+#include "scene/error.h"
 #include "scene/ray_caster.h"
 
 namespace rad::cli {
@@ -29,13 +30,44 @@ std::string rgb(const Rgb& v) {
   return out.str();
 }
 
+/// Refuses, before any work, a mesh that would need more than half the machine's memory, with
+/// the number of elements and the memory it would need at the least (least_mesh_needs).
+void refuse_mesh_beyond_memory(const Scene& scene, const SolveOptions& o) {
+  const MeshNeeds needs = least_mesh_needs(scene, o.settings);
+  const double memory = machine_memory();
+  if (!(memory > 0) || needs.bytes <= 0.5 * memory) return;
+  std::ostringstream message;
+  message << o.scene << ": meshed at --patch-size " << o.settings.patch_size
+          << " and --element-levels " << o.settings.element_levels << " it makes at least "
+          << static_cast<long long>(needs.elements) << " elements, which need at least "
+          << std::fixed << std::setprecision(1) << needs.bytes / (1 << 30)
+          << " GiB, more than half of this machine's " << memory / (1 << 30)
+          << " GiB: raise --patch-size or lower --element-levels";
+  throw InputError(message.str());
+}
+
 void run_solve(const SolveOptions& o) {
   const ThreadLimit limit(o.threads);
   const Scene scene = load_scene_reporting(o.scene);
   check_outputs({{"the solution (-o)", o.output}});  // before the work, not after it
+  refuse_mesh_beyond_memory(scene, o);
   const RayCaster caster(scene);
-  ProgressBar bar("solve");
+  using Stage = SolveProgress::Stage;
+  ProgressBar bar("solve (meshing)");
+  Stage shown = Stage::meshing;
   Solution solution = solve(caster, o.settings, [&](const SolveProgress& p) {
+    if (p.stage != shown) {
+      shown = p.stage;
+      bar.stage(p.stage == Stage::burying ? "solve (burying)" : "solve (shooting)");
+    }
+    if (p.stage == Stage::meshing) {
+      bar.update(p.stage_done, "polygons into patches and elements");
+      return;
+    }
+    if (p.stage == Stage::burying) {
+      bar.update(p.stage_done, "elements inside closed objects found");
+      return;
+    }
     // Progress on a log scale: from 1 (nothing shot) to the target fraction.
     const double done = std::log(std::max(p.unshot_fraction, 1e-300)) / std::log(p.target_fraction);
     std::ostringstream detail;
@@ -92,7 +124,11 @@ void add_solve_command(CLI::App& app, Run& run) {
       "summary and the energy ledger (emitted = absorbed + escaped + unshot [+ redirected: what\n"
       "glossy surfaces reflect into their lobes, not carried]) on stderr. Bitwise\n"
       "deterministic for a seed, whatever the thread count. Accuracy against time:\n"
-      "bench/results/global_accuracy.md. The algorithm: docs/algorithms.md.");
+      "bench/results/global_accuracy.md. The algorithm: docs/algorithms.md.\n"
+      "Shows its progress with the time left (a bar on a terminal, else a line every --progress\n"
+      "seconds). Refuses before any work a mesh that would need more than half the machine's\n"
+      "memory, with the elements and memory it would need at the least. Interrupted, it\n"
+      "leaves no partial file.");
   sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
   sub->add_option("--patch-size", s.patch_size,

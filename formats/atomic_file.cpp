@@ -1,15 +1,18 @@
 #include "formats/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <optional>
 #include <system_error>
 
@@ -20,6 +23,63 @@ namespace rad {
 namespace {
 
 thread_local CommitGroup* current_group = nullptr;
+
+/// The temporaries alive now, for a signal handler to remove: an interrupted command (Ctrl-C,
+/// a batch system's SIGTERM, a closed terminal's SIGHUP) leaves its targets as they were and
+/// nothing of its own beside them. Fixed slots of fixed size, because a handler may do no more
+/// than read them and call unlink(); a temporary that finds no slot (more than kSlots at once,
+/// or a path too long) is left to remove_stale_temporaries, as after a SIGKILL.
+struct TemporarySlot {
+  static constexpr size_t kPath = 4096;
+  std::atomic<int> state{0};  ///< 0 free, 1 being filled, 2 holds a live temporary's path
+  char path[kPath];
+};
+constexpr int kSlots = 64;
+TemporarySlot temporary_slots[kSlots];
+
+extern "C" void remove_temporaries_and_stop(int signal) {
+  for (TemporarySlot& slot : temporary_slots) {
+    if (slot.state.load() == 2) ::unlink(slot.path);
+  }
+  // Then die of the signal, as without the handler (the shell sees how it ended).
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
+
+/// Installs the handler for SIGINT, SIGTERM and SIGHUP, each only where no one else handles
+/// or ignores it (an MPI job's root has its own for SIGTERM; nohup ignores SIGHUP).
+void install_interrupt_handler() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction now {};
+      if (::sigaction(signal, nullptr, &now) != 0 || now.sa_handler != SIG_DFL) continue;
+      struct sigaction handler {};
+      handler.sa_handler = remove_temporaries_and_stop;
+      sigemptyset(&handler.sa_mask);
+      ::sigaction(signal, &handler, nullptr);
+    }
+  });
+}
+
+/// The slot now holding `path`, or -1.
+int register_temporary(const std::string& path) {
+  install_interrupt_handler();
+  if (path.size() >= TemporarySlot::kPath) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int free = 0;
+    if (!temporary_slots[i].state.compare_exchange_strong(free, 1)) continue;
+    std::memcpy(temporary_slots[i].path, path.c_str(), path.size() + 1);
+    temporary_slots[i].state.store(2);
+    return i;
+  }
+  return -1;
+}
+
+void unregister_temporary(int& slot) {
+  if (slot >= 0) temporary_slots[slot].state.store(0);
+  slot = -1;
+}
 
 bool is_stdout(const std::filesystem::path& p) { return p == "-"; }
 
@@ -161,6 +221,7 @@ AtomicFile::AtomicFile(std::filesystem::path target) {
                 folder.string() + "': " + std::strerror(errno));
   }
   p_.temp = name;
+  p_.slot = register_temporary(name);
   p_.lock_fd = fd;
   ::flock(fd, LOCK_EX);  // ours until renamed (remove_stale_temporaries)
   if (!p_.through) ::fchmod(fd, mode_for(p_.resolved));
@@ -173,6 +234,7 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::Pending::discard() {
   std::error_code ignored;
   if (!temp.empty()) std::filesystem::remove(temp, ignored);
+  unregister_temporary(slot);
   if (lock_fd >= 0) ::close(lock_fd);
   lock_fd = -1;
 }
@@ -200,6 +262,7 @@ void AtomicFile::Pending::finish() {
   std::error_code ec;
   std::filesystem::rename(temp, resolved, ec);
   if (ec) fail(ec.message());
+  unregister_temporary(slot);  // (an interrupt between the two removes nothing: it is gone)
   ::close(lock_fd);
   lock_fd = -1;
   remove_stale_temporaries(resolved);

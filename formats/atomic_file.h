@@ -3,7 +3,9 @@
 /// and rename it over the target only when writing succeeded. A symlink is followed (its target
 /// is replaced, the link kept); a character device, a FIFO or a socket is written through (the
 /// bytes copied into it, the special file left as it is), as is "-", stdout. No output is
-/// written over a file the process read as an input (scene/input_files.h).
+/// written over a file the process read as an input (scene/input_files.h). An interrupt
+/// (SIGINT, SIGTERM, SIGHUP) removes the live temporaries before the process dies of it; after
+/// a SIGKILL the next write of the same target removes them.
 #include <filesystem>
 #include <functional>
 #include <ostream>
@@ -46,6 +48,7 @@ class AtomicFile {
     std::filesystem::path temp;
     bool through = false;  ///< A special file or stdout: copy into it, never rename over it.
     int lock_fd = -1;      ///< Held on the temporary until it is renamed: it is alive.
+    int slot = -1;         ///< Where an interrupt's handler finds it (-1: nowhere)
     void finish();         ///< The rename or the copy itself; then the stale temporaries go.
     void discard();        ///< Removes the temporary.
   };

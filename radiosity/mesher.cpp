@@ -91,10 +91,12 @@ void element_geometry(const std::vector<Vec3>& corners, double* area, Vec3* cent
   *centroid = total > 0 ? Vec3(weighted / total) : corners[0];
 }
 
-std::vector<Patch> make_patches(const Scene& scene, double patch_size) {
+std::vector<Patch> make_patches(const Scene& scene, double patch_size,
+                                const std::function<void(double)>& progress) {
   std::vector<Patch> patches;
   const NearPolygons near(scene);
   for (size_t i = 0; i < scene.polygons.size(); ++i) {
+    if (progress && i % 1024 == 0) progress(static_cast<double>(i) / scene.polygons.size());
     const Polygon& p = scene.polygons[i];
     const int id = static_cast<int>(i);
     const std::vector<std::vector<Vec3>> pieces = contact_pieces(scene, id, 64, &near);
@@ -122,6 +124,14 @@ std::vector<Patch> make_patches(const Scene& scene, double patch_size) {
     }
   }
   return patches;
+}
+
+double least_patches(const Scene& scene, double patch_size) {
+  double count = 0;
+  for (const Polygon& p : scene.polygons)
+    // (Less a hair: divisions() lets an edge pass patch_size by its matching tolerance.)
+    count += std::max(1.0, std::ceil(p.area / (patch_size * patch_size) * (1 - 1e-6)));
+  return count;
 }
 
 void split_element(std::vector<Element>& elements, int e) {

@@ -1,5 +1,6 @@
 #pragma once
 /// Meshing scene polygons into patches and elements.
+#include <functional>
 #include <vector>
 
 #include "radiosity/solution.h"
@@ -13,7 +14,14 @@ namespace rad {
 /// and each triangle cut the same way. First, polygons are cut along their contact lines
 /// (radiosity/contact_cuts.h) and each piece meshed alone. Patches keep the parent's orientation
 /// and normal.
-std::vector<Patch> make_patches(const Scene& scene, double patch_size);
+/// `progress`, when given, is told the fraction of the polygons done, now and then.
+std::vector<Patch> make_patches(const Scene& scene, double patch_size,
+                                const std::function<void(double)>& progress = {});
+
+/// A lower bound on the patches make_patches(scene, patch_size) makes, without making them:
+/// per polygon ceil(area / patch_size^2), and at least one. (Every patch has edges no longer
+/// than patch_size, so an area of at most patch_size^2; the contact cuts only add patches.)
+double least_patches(const Scene& scene, double patch_size);
 
 /// Area and area centroid of a planar 3- or 4-gon.
 void element_geometry(const std::vector<Vec3>& corners, double* area, Vec3* centroid);

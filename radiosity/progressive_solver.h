@@ -27,7 +27,10 @@ namespace rad {
 /// order), so results do not depend on the thread count.
 class ProgressiveSolver {
  public:
-  ProgressiveSolver(const RayCaster& caster, const SolverSettings& settings);
+  /// Meshes the scene (telling `progress` how far it is: SolveProgress::Stage) and sets the
+  /// initial state.
+  ProgressiveSolver(const RayCaster& caster, const SolverSettings& settings,
+                    const std::function<void(const SolveProgress&)>& progress = {});
 
   /// Shoots until the unshot power is below the target (or the shot limit).
   void shoot_until_converged(const std::function<void(const SolveProgress&)>& progress);
@@ -93,7 +96,7 @@ class ProgressiveSolver {
   /// and the light of every patch along a contact line lost in part, the floor's most of all.
   /// A_live is measured on an 8 x 8 grid of each patch; elements are buried when their
   /// centroid is, and buried elements neither receive nor split.
-  void find_buried();
+  void find_buried(const std::function<void(double)>& progress);
 
   bool refinement_enabled() const { return settings_.refine_threshold > 0 && reference_ > 0; }
   /// Errors are seen relative to the local brightness: the limit follows the local radiosity,

@@ -17,6 +17,7 @@
 
 #include "geometry/lambert.h"
 #include "radiosity/error_bound.h"
+#include "radiosity/mesher.h"
 #include "radiosity/progressive_solver.h"
 
 namespace rad {
@@ -33,7 +34,20 @@ double reference_radiosity(const Scene& scene) {
   return reference;
 }
 
-ProgressiveSolver::ProgressiveSolver(const RayCaster& caster, const SolverSettings& settings)
+MeshNeeds least_mesh_needs(const Scene& scene, const SolverSettings& settings) {
+  const double per_patch = std::pow(4.0, settings.element_levels);
+  MeshNeeds needs;
+  needs.elements =
+      least_patches(scene, settings.patch_size * scene.bounds().diagonal()) * per_patch;
+  // The element with a triangle's corners, and ProgressiveSolver's seven Rgb per element
+  // (leaf_unshot_, leaf_shot_, shooting_, ff_, back_ff_, near_incoming_, back_irradiance_).
+  constexpr double kBytes = sizeof(Element) + 3 * sizeof(Vec3) + 7 * sizeof(Rgb);
+  needs.bytes = needs.elements * kBytes;
+  return needs;
+}
+
+ProgressiveSolver::ProgressiveSolver(const RayCaster& caster, const SolverSettings& settings,
+                                     const std::function<void(const SolveProgress&)>& progress)
     : scene_(caster.scene()),
       settings_(settings),
       diagonal_(scene_.bounds().diagonal()),
@@ -42,9 +56,19 @@ ProgressiveSolver::ProgressiveSolver(const RayCaster& caster, const SolverSettin
       contact_size_(std::max(min_size_, settings.patch_size * diagonal_ / 16)),
       rays_(caster, settings, 1e-5 * diagonal_) {  // offsets ~100x float precision
   solution_.settings = settings;
-  solution_.patches = make_patches(scene_, settings.patch_size * diagonal_);
+  const auto stage = [&](SolveProgress::Stage what) {
+    return [&progress, what](double done) {
+      if (!progress) return;
+      SolveProgress report;
+      report.stage = what;
+      report.stage_done = done;
+      progress(report);
+    };
+  };
+  solution_.patches =
+      make_patches(scene_, settings.patch_size * diagonal_, stage(SolveProgress::Stage::meshing));
   solution_.elements = make_elements(solution_.patches, settings.element_levels);
-  find_buried();
+  find_buried(stage(SolveProgress::Stage::burying));
   // Initial state: each patch's unshot radiosity and each element's radiosity is its emission.
   for (size_t i = 0; i < patches().size(); ++i) {
     Patch& p = patches()[i];
@@ -175,16 +199,22 @@ Solution ProgressiveSolver::finish(double seconds) {
   return std::move(solution_);
 }
 
-void ProgressiveSolver::find_buried() {
-  buried_.assign(elements().size(), 0);
-  long_enough_.assign(elements().size(), 0);
-  near_contact_.assign(elements().size(), 0);
-  tbb::parallel_for(size_t(0), elements().size(), [&](size_t e) {
-    const Element& el = elements()[e];
-    buried_[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
-    long_enough_[e] = longest_edge(el.corners) > min_size_;
-    near_contact_[e] = near_a_contact(el);
-  });
+void ProgressiveSolver::find_buried(const std::function<void(double)>& progress) {
+  const size_t count = elements().size();
+  buried_.assign(count, 0);
+  long_enough_.assign(count, 0);
+  near_contact_.assign(count, 0);
+  // In a hundred parts, to report between them (each part still runs in parallel).
+  const size_t part = std::max<size_t>(4096, count / 100);
+  for (size_t begin = 0; begin < count; begin += part) {
+    if (progress) progress(static_cast<double>(begin) / count);
+    tbb::parallel_for(begin, std::min(count, begin + part), [&](size_t e) {
+      const Element& el = elements()[e];
+      buried_[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
+      long_enough_[e] = longest_edge(el.corners) > min_size_;
+      near_contact_[e] = near_a_contact(el);
+    });
+  }
   constexpr int grid = 8;
   live_area_.assign(patches().size(), 0);
   tbb::parallel_for(size_t(0), patches().size(), [&](size_t i) {
@@ -369,7 +399,7 @@ Solution solve(const RayCaster& caster, const SolverSettings& settings,
       caster.scene(), settings.glass_as_filters && caster.scene().refraction_depth > 0);
   std::optional<RayCaster> carried_caster;
   if (carried) carried_caster.emplace(*carried);
-  ProgressiveSolver solver(carried_caster ? *carried_caster : caster, settings);
+  ProgressiveSolver solver(carried_caster ? *carried_caster : caster, settings, progress);
   solver.shoot_until_converged(progress);
   for (int pass = 0; pass < settings.refine_passes; ++pass) {
     if (solver.refine_by_neighbours() == 0) break;

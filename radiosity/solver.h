@@ -8,8 +8,14 @@
 
 namespace rad {
 
-/// Reported after every shot.
+/// Reported while the mesh is made, and after every shot.
 struct SolveProgress {
+  /// What the solve is doing: cutting and splitting the polygons into patches and elements,
+  /// finding the elements buried inside closed objects (for both, `stage_done` is the fraction
+  /// done), or shooting (the fields below).
+  enum class Stage { meshing, burying, shooting };
+  Stage stage = Stage::shooting;
+  double stage_done = 0;
   int shots = 0;
   double unshot_fraction = 1;  ///< Current unshot power / emitted power.
   double target_fraction = 0;  ///< Where the solve stops.
@@ -41,6 +47,16 @@ struct SolveProgress {
 /// count. Throws Error for invalid settings.
 Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress = {});
+
+/// What a solve's mesh needs at the least, known before it is made: the elements (at least
+/// least_patches() x 4^element_levels) and the bytes
+/// the solver keeps for each (the element, its corners, its radiosity's working copies). The
+/// refinement and the form factors' store come on top. For refusing a scene before the work.
+struct MeshNeeds {
+  double elements = 0;
+  double bytes = 0;
+};
+MeshNeeds least_mesh_needs(const Scene& scene, const SolverSettings& settings);
 
 /// Mean radiosity estimate used to scale refinement: per channel, emitted power / total area /
 /// (1 - area-weighted mean reflectance); the largest channel.

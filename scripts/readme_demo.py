@@ -5,9 +5,13 @@ then this script, so the README shows what the demo printed, never hand-typed nu
 
 Usage: scripts/readme_demo.py DEMO_LOG   (run from the repository root)
 """
+import re
 import sys
 
 BEGIN, END = "<!-- demo output: begin -->", "<!-- demo output: end -->"
+# "solve (shooting): 42%, ...", "render: 7%, ...": what ProgressBar prints every --progress
+# seconds where stderr is not a terminal.
+PROGRESS = re.compile(r"^[a-z]+( \([a-z]+\))?: \d+%, ")
 
 
 def main():
@@ -22,6 +26,9 @@ def main():
             continue
         if not started or line.startswith("make") or line.startswith("demo: in "):
             continue
+        if PROGRESS.match(line):
+            continue  # a log's progress lines; on a terminal the bar is cleared
+
         if line.startswith("warning:"):
             if warned:
                 continue  # the same left-wall warning, printed by every command

@@ -79,8 +79,10 @@ driver, loaded by VTK's offscreen rendering, leaks from a module it unloads.
 ## Nothing lost, the same bytes
 
 Outputs are written to a temporary file beside the target and renamed over it
-(`formats/atomic_file.h`); the next successful write removes temporaries that killed processes
-left (a writer holds a lock on its temporary, which the kernel drops with the process).
+(`formats/atomic_file.h`). An interrupt (Ctrl-C's SIGINT, a batch system's SIGTERM, a closed
+terminal's SIGHUP) removes the live temporaries before the process dies of it; after a SIGKILL,
+the next successful write removes what was left (a writer holds a lock on its temporary, which
+the kernel drops with the process).
 `tests/cli/output_safety_test.cpp` checks, each case reproduced on the code before the fix
 (issue 39):
 
@@ -126,7 +128,8 @@ with Ninja and unity builds of the modules; `make test` installs and builds the 
 `make demo` for the ratio: [bench/results/fresh_machine.md](../bench/results/fresh_machine.md).
 
  `tests/cli/durability_test.cpp` kills large renders at a dozen moments of their run and
-checks that the previous image is intact, that two processes writing one output leave one whole
+checks that the previous image is intact, interrupts them at a dozen more and checks that no
+temporary is left, that two processes writing one output leave one whole
 file, that solve, probe and every render method give byte-identical files for 1, 2 and 4
 threads and from run to run, and that no NaN or infinity reaches a solution, a probe CSV or an
 image.

@@ -167,6 +167,39 @@ TEST(Cli, SolveThenRenderPatches) {
   EXPECT_GT(brightest, 0.05);
 }
 
+TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
+  const fs::path dir = scratch();
+  const std::string cornell = quoted(kRoot / "data/cornell-box/scene.json");
+  const std::string quick = " --patch-size 0.05 --element-levels 0 --refine-threshold 0";
+  // stderr is a file here: whole lines, every --progress seconds, with the time so far.
+  Result r = run("--progress 0.05 solve " + cornell + quick + " --unshot 0.01 -o " +
+                 quoted(dir / "a.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int lines = 0;
+  std::istringstream err(r.err);
+  for (std::string line; std::getline(err, line);) {
+    if (line.rfind("solve (shooting): ", 0) != 0) continue;
+    ++lines;
+    EXPECT_NE(line.find("% (target 1%), shot "), std::string::npos) << line;
+    const bool timed = line.ends_with(" s") || line.ends_with(" left");
+    EXPECT_TRUE(timed) << "ends with the time so far, or the time left: " << line;
+  }
+  EXPECT_GE(lines, 3) << r.err;
+  EXPECT_EQ(r.err.find("\r"), std::string::npos) << "no bar when stderr is not a terminal";
+  r = run("--progress 0 solve " + cornell + quick + " --unshot 0.01 -o " + quoted(dir / "b.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("solve (shooting)"), std::string::npos) << r.err;
+  // A mesh of billions of elements: refused at once, with what it would need.
+  r = run("solve " + cornell + " --patch-size 1e-4 --element-levels 3 -o " + quoted(dir / "c.vtp"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("scene.json: meshed at --patch-size 0.0001 and --element-levels 3 it "
+                       "makes at least "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(" GiB, more than half of this machine's "), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "c.vtp"));
+}
+
 TEST(Cli, RenderPatchesRefusesAMissingOrMismatchedSolution) {
   const fs::path dir = scratch();
   const std::string floor = quoted(kRoot / "data/light-over-floor/scene.json");

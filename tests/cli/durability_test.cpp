@@ -98,6 +98,54 @@ TEST(Durability, KilledWritesLeaveThePreviousFileWholeAndTheNextRunCleansUp) {
   EXPECT_EQ(slurp(image), before);
 }
 
+TEST(Durability, InterruptedRunsLeaveNoTemporaryAndThePreviousFileWhole) {
+  // Ctrl-C, a batch system's SIGTERM and a closed terminal's SIGHUP, at times spread over a
+  // render's run (some while it writes its temporary): the process dies of the signal, its
+  // temporaries gone with it, and the previous image stays whole. (A solve writes only at its
+  // end: the same code.)
+  const fs::path dir = scratch();
+  const fs::path image = dir / "image.exr";
+  const std::string scene = (kRoot / "data/cornell-box/scene.json").string();
+  ASSERT_EQ(
+      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+          .exit_code,
+      0);
+  const std::string before = slurp(image);
+  const std::vector<std::string> args{"render", scene,      "--method", "albedo", "--width",
+                                      "2048",   "--height", "2048",     "-o",     image.string()};
+  const auto t0 = std::chrono::steady_clock::now();
+  int status = 0;
+  ::waitpid(start(args), &status, 0);
+  const double full = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  ASSERT_EQ(
+      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+          .exit_code,
+      0);
+  int interrupted = 0;
+  for (int k = 1; k <= 12; ++k) {
+    const int signal = k % 3 == 0 ? SIGINT : k % 3 == 1 ? SIGTERM : SIGHUP;
+    const pid_t pid = start(args);
+    std::this_thread::sleep_for(std::chrono::duration<double>(full * k / 12.5));
+    ::kill(pid, signal);
+    ::waitpid(pid, &status, 0);
+    EXPECT_EQ(temporaries(dir), 0) << "interrupt " << k << " left a temporary";
+    const std::string now = slurp(image);
+    if (WIFSIGNALED(status)) {
+      EXPECT_EQ(WTERMSIG(status), signal) << "interrupt " << k;
+      EXPECT_EQ(now, before) << "interrupt " << k << ": the previous image changed";
+      ++interrupted;
+    } else {  // finished before the signal: back to the small image
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+      ASSERT_EQ(
+          run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+              .exit_code,
+          0);
+    }
+  }
+  EXPECT_GE(interrupted, 6) << "most signals reach the render while it runs";
+}
+
 TEST(Durability, TwoProcessesWritingOneOutputLeaveOneWholeFile) {
   const fs::path dir = scratch();
   const std::string out = (dir / "image.exr").string();

@@ -7,8 +7,10 @@
 #include <random>
 
 #include "radiosity/patch_mesh.h"
+#include "radiosity/solver.h"
 #include "scene/polygon_validation.h"
 #include "scene/scene_loader.h"
+#include "tests/random_scenes.h"
 
 namespace rad {
 namespace {
@@ -201,6 +203,38 @@ TEST(ElementMesh, MeanValueInterpolationReproducesLinearFunctionsAndIsContinuous
       ASSERT_NE(a, b);
       EXPECT_NEAR((value_at(a, on) - value_at(b, on)).norm(), 0, 1e-12)
           << "crack at " << on.transpose();
+    }
+  }
+}
+
+TEST(Mesher, TheLeastPatchesAndElementsAreALowerBoundAndNotAFarOne) {
+  // least_patches and least_mesh_needs (the memory check before a solve) against the mesh made:
+  // never above it (a refusal is never wrong), and on the Cornell box within a factor 3 of it
+  // (measured 2.1 to 2.4: its blocks' contact cuts).
+  const Scene cornell =
+      load_scene(std::filesystem::path(RAD_SOURCE_DIR) / "data/cornell-box/scene.json");
+  std::vector<Scene> scenes{cornell};
+  for (uint64_t seed = 1; seed <= 4; ++seed)
+    scenes.push_back(test::RandomSceneMaker(seed).random_scene().scene);
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    for (const double fraction : {0.3, 0.05, 0.01}) {
+      for (const int levels : {0, 2}) {
+        SolverSettings settings;
+        settings.patch_size = fraction;
+        settings.element_levels = levels;
+        const double size = fraction * scenes[i].bounds().diagonal();
+        const std::vector<Patch> patches = make_patches(scenes[i], size);
+        const double made = static_cast<double>(make_elements(patches, levels).size());
+        const MeshNeeds needs = least_mesh_needs(scenes[i], settings);
+        EXPECT_LE(least_patches(scenes[i], size), static_cast<double>(patches.size()))
+            << "scene " << i << ", patch size " << fraction;
+        EXPECT_LE(needs.elements, made) << "scene " << i << ", patch size " << fraction;
+        // Close on the Cornell box; loose where contact cuts make many small pieces.
+        if (i == 0) {
+          EXPECT_GE(needs.elements, made / 3) << "patch size " << fraction;
+        }
+        EXPECT_GE(needs.bytes, needs.elements * 200);
+      }
     }
   }
 }
