@@ -159,11 +159,17 @@ ProgressBar::ProgressBar(std::string label, std::ostream& out, bool terminal, do
 
 ProgressBar::~ProgressBar() { finish(); }
 
-std::string ProgressBar::time_left(double done, double now) const {
-  // The rate so far, once a second has passed and a hundredth is done: earlier it says little.
+std::string ProgressBar::time_left(double done, double now) {
+  if (history_.empty() || now - history_.back().first >= 1) history_.emplace_back(now, done);
+  // Once a second has passed and a hundredth is done: earlier the rate says little.
   const double elapsed = now - stage_start_;
   if (!(done >= 0.01 && done < 1) || elapsed < 1) return "";
-  const double left = elapsed * (1 - done) / done;
+  // The first sample of the last third of the stage (at least its last second).
+  const double since = now - std::max(1.0, elapsed / 3);
+  const auto from = std::lower_bound(history_.begin(), history_.end(), since,
+                                     [](const auto& sample, double t) { return sample.first < t; });
+  if (from == history_.end() || !(done > from->second) || !(now > from->first)) return "";
+  const double left = (1 - done) * (now - from->first) / (done - from->second);
   return left < 1 ? "under 1 s left" : "about " + duration_text(left) + " left";
 }
 
@@ -171,6 +177,7 @@ void ProgressBar::stage(const std::string& label) {
   const std::lock_guard<std::mutex> lock(mutex_);
   label_ = label;
   stage_start_ = now_seconds();
+  history_.clear();
 }
 
 void ProgressBar::update(double done, const std::string& detail) {

@@ -6,6 +6,8 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "localpass/local_pass.h"
 #include "radiosity/solution.h"
@@ -109,8 +111,10 @@ class ProgressBar {
   void finish();
 
  private:
-  /// "about 3 min left", or nothing while too little is done to tell.
-  std::string time_left(double done, double now) const;
+  /// "about 3 min left", or nothing while too little is done to tell. From the rate over the
+  /// last third of the stage: a solve's measure (the log of the unshot fraction) slows as it
+  /// goes, and the rate since the start would promise too early an end.
+  std::string time_left(double done, double now);
 
   std::mutex mutex_;
   std::string label_;
@@ -118,7 +122,8 @@ class ProgressBar {
   bool terminal_;
   double interval_;
   double stage_start_;
-  double last_ = -1;  ///< Last drawn (terminal) or printed (lines)
+  std::vector<std::pair<double, double>> history_;  ///< (time, done), one a second at most
+  double last_ = -1;                                ///< Last drawn (terminal) or printed (lines)
   bool drawn_ = false;
 };
 
