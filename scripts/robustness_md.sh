@@ -128,7 +128,7 @@ with Ninja and unity builds of the modules; `make test` installs and builds the 
 `make demo` for the ratio: [bench/results/fresh_machine.md](../bench/results/fresh_machine.md).
 
  `tests/cli/durability_test.cpp` kills large renders at a dozen moments of their run and
-checks that the previous image is intact, interrupts them at a dozen more and checks that no
+checks that the previous image is intact, interrupts them at 8 more and checks that no
 temporary is left, that two processes writing one output leave one whole
 file, that solve, probe and every render method give byte-identical files for 1, 2 and 4
 threads and from run to run, and that no NaN or infinity reaches a solution, a probe CSV or an
