@@ -49,53 +49,65 @@ int temporaries(const fs::path& dir) {
   return count;
 }
 
+/// A large render to stop at moments of its run, over a small one's image: `full` is how long
+/// it took whole, `after` what it wrote; the small image is back in place.
+struct LargeRender {
+  fs::path dir, image;
+  std::vector<std::string> args;
+  std::string before, after;
+  double full = 0;
+
+  LargeRender() : dir(scratch()), image(dir / "image.exr") {
+    small();
+    before = slurp(image);
+    args = {"render",   (kRoot / "data/cornell-box/scene.json").string(),
+            "--method", "albedo",
+            "--width",  "2048",
+            "--height", "2048",
+            "-o",       image.string()};
+    const auto t0 = std::chrono::steady_clock::now();
+    int status = 0;
+    ::waitpid(start(args), &status, 0);
+    full = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    after = slurp(image);
+    small();
+  }
+  /// The small image written again (over what a finished large render left).
+  void small() const {
+    ASSERT_EQ(
+        run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
+            .exit_code,
+        0);
+  }
+  /// Starts the large render, waits `seconds`, sends `signal`; returns how it ended (waitpid).
+  int stopped(double seconds, int signal) const {
+    const pid_t pid = start(args);
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    ::kill(pid, signal);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return status;
+  }
+};
+
 TEST(Durability, KilledWritesLeaveThePreviousFileWholeAndTheNextRunCleansUp) {
-  const fs::path dir = scratch();
-  const fs::path image = dir / "image.exr";
-  const std::string scene = (kRoot / "data/cornell-box/scene.json").string();
-  ASSERT_EQ(
-      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-          .exit_code,
-      0);
-  const std::string before = slurp(image);
   // Large renders killed at times spread over their run: some before writing, some while the
   // temporary is being written, some after the rename.
-  const std::vector<std::string> args{"render", scene,      "--method", "albedo", "--width",
-                                      "2048",   "--height", "2048",     "-o",     image.string()};
-  const auto t0 = std::chrono::steady_clock::now();
-  int status = 0;
-  ::waitpid(start(args), &status, 0);
-  const double full = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  const std::string after = slurp(image);
-  ASSERT_EQ(
-      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-          .exit_code,
-      0);
+  const LargeRender render;
   int with_temporary = 0;
   for (int k = 1; k <= 12; ++k) {
-    const pid_t pid = start(args);
-    std::this_thread::sleep_for(std::chrono::duration<double>(full * k / 12.5));
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &status, 0);
-    with_temporary += temporaries(dir) > 0;
-    const std::string now = slurp(image);
-    EXPECT_TRUE(now == before || now == after) << "kill " << k << ": a partial image";
-    if (now == after) {  // finished before the kill: back to the small image
-      ASSERT_EQ(
-          run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-              .exit_code,
-          0);
-    }
+    render.stopped(render.full * k / 12.5, SIGKILL);
+    with_temporary += temporaries(render.dir) > 0;
+    const std::string now = slurp(render.image);
+    EXPECT_TRUE(now == render.before || now == render.after) << "kill " << k << ": a partial image";
+    if (now == render.after) render.small();  // finished before the kill
   }
   std::cout << with_temporary << " of 12 kills left a temporary behind\n";
   // The next successful run removes what killed processes left.
-  ASSERT_EQ(
-      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-          .exit_code,
-      0);
-  EXPECT_EQ(temporaries(dir), 0);
-  EXPECT_EQ(slurp(image), before);
+  render.small();
+  EXPECT_EQ(temporaries(render.dir), 0);
+  EXPECT_EQ(slurp(render.image), render.before);
 }
 
 TEST(Durability, InterruptedRunsLeaveNoTemporaryAndThePreviousFileWhole) {
@@ -103,44 +115,19 @@ TEST(Durability, InterruptedRunsLeaveNoTemporaryAndThePreviousFileWhole) {
   // render's run (some while it writes its temporary): the process dies of the signal, its
   // temporaries gone with it, and the previous image stays whole. (A solve writes only at its
   // end: the same code.)
-  const fs::path dir = scratch();
-  const fs::path image = dir / "image.exr";
-  const std::string scene = (kRoot / "data/cornell-box/scene.json").string();
-  ASSERT_EQ(
-      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-          .exit_code,
-      0);
-  const std::string before = slurp(image);
-  const std::vector<std::string> args{"render", scene,      "--method", "albedo", "--width",
-                                      "2048",   "--height", "2048",     "-o",     image.string()};
-  const auto t0 = std::chrono::steady_clock::now();
-  int status = 0;
-  ::waitpid(start(args), &status, 0);
-  const double full = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  ASSERT_EQ(
-      run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-          .exit_code,
-      0);
+  const LargeRender render;
   int interrupted = 0;
   for (int k = 1; k <= 8; ++k) {
     const int signal = k % 3 == 0 ? SIGINT : k % 3 == 1 ? SIGTERM : SIGHUP;
-    const pid_t pid = start(args);
-    std::this_thread::sleep_for(std::chrono::duration<double>(full * k / 8.5));
-    ::kill(pid, signal);
-    ::waitpid(pid, &status, 0);
-    EXPECT_EQ(temporaries(dir), 0) << "interrupt " << k << " left a temporary";
-    const std::string now = slurp(image);
+    const int status = render.stopped(render.full * k / 8.5, signal);
+    EXPECT_EQ(temporaries(render.dir), 0) << "interrupt " << k << " left a temporary";
     if (WIFSIGNALED(status)) {
       EXPECT_EQ(WTERMSIG(status), signal) << "interrupt " << k;
-      EXPECT_EQ(now, before) << "interrupt " << k << ": the previous image changed";
+      EXPECT_EQ(slurp(render.image), render.before) << "interrupt " << k << ": image changed";
       ++interrupted;
-    } else {  // finished before the signal: back to the small image
+    } else {  // finished before the signal
       ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-      ASSERT_EQ(
-          run("render " + kCornell + " --method albedo --width 64 --height 64 -o " + quoted(image))
-              .exit_code,
-          0);
+      render.small();
     }
   }
   EXPECT_GE(interrupted, 4) << "most signals reach the render while it runs";
