@@ -78,6 +78,11 @@ class NearField {
              const std::vector<Rgb>& density, const std::vector<float>& spread, double tolerated,
              const std::function<Rgb(int)>& measure, bool record);
 
+  /// Whether the patch is one leaf: it has no pieces to gather it by.
+  bool is_one_piece(const std::vector<Element>& elements, int patch) const {
+    return roots_[patch].size() == 1 && elements[roots_[patch][0]].is_leaf();
+  }
+
   /// f(leaf) for each leaf of a patch's trees.
   template <typename F>
   void for_each_leaf(const std::vector<Element>& elements, int patch, const F& f) const {

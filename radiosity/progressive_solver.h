@@ -147,8 +147,14 @@ class ProgressiveSolver {
     return visible_ff(solution_.elements[e], part, stream_key(shot, e, StreamKind::near, node), 2);
   }
   /// Whether receiver e gathers `patch` piece by piece: near it, or where its spread could
-  /// make it off by more than the receiver tolerates (near_tolerance).
+  /// make it off by more than the receiver tolerates (near_tolerance). Never a patch that is
+  /// one leaf (--element-levels 0, not split): its one piece is the patch itself, which the
+  /// far path measures with all the shadow rays and keeps in the budgeted store, as the density
+  /// over its live area (find_buried); gathered as its leaf it had a quarter of the rays, the
+  /// leaf's density diluted by A_live / A where the patch is partly buried, and a stored pair
+  /// per receiver without a budget (9 million on the 15,000-polygon building).
   bool is_near(int e, int patch, double spread) const {
+    if (near_field_.is_one_piece(solution_.elements, patch)) return false;
     return NearField::gathers_in_pieces(solution_.elements[e].centroid, patch_bounds_[patch],
                                         solution_.patches[patch].area, spread, near_tolerance(e));
   }

@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "radiosity/patch_mesh.h"
 #include "scene/error.h"
@@ -280,6 +281,33 @@ TEST(Solver, ShaftCullingSkipsRaysWhereNothingIsBetween) {
         << "seed " << seed;
   }
   EXPECT_GE(traced, 3) << "scenes where some pairs still needed rays";
+}
+
+TEST(Solver, APartlyBuriedPatchOfOneElementIsShotAsItsLiveDensity) {
+  // The furnace (E = 1, rho = 0.5 everywhere) with 25 blocks standing on its floor: more contact
+  // lines than the floor is cut along (64), so its patches are partly buried. At one element
+  // per patch, a patch is its own only piece: gathered "in pieces" near it, its light went out
+  // as its leaf's radiosity over the whole patch, of which the blocks' shadow rays saw only the
+  // live part, and the rest was lost. Measured, the closed room's escaped light: 6.70% of the
+  // emitted that way, 5.85% sent as the density over its live area (the far path). The rest is
+  // the point-sampled receivers' reciprocity error where a centroid is buried and its patch is
+  // not; the bound below sits between the two, so the near path for such patches fails it.
+  test::SceneBuilder b;
+  b.scene() = load_scene(kScenes / "closed-cube/scene.json");
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const Vec3 lo(0.08 + 0.18 * i, 0, 0.08 + 0.18 * j);
+      b.box(lo, lo + Vec3(0.07, 0.1, 0.07), 0);
+    }
+  }
+  SolverSettings settings;
+  settings.patch_size = 0.25;
+  settings.element_levels = 0;
+  settings.refine_threshold = 0;
+  const Solution s = solve_scene(b.scene(), settings);
+  const double lost = s.stats.escaped.cwiseAbs().maxCoeff() / s.stats.emitted.maxCoeff();
+  std::cout << "escaped " << 100 * lost << "% of the emitted\n";
+  EXPECT_LT(lost, 0.062);
 }
 
 TEST(Solver, IsBitwiseDeterministicAcrossThreadCounts) {
