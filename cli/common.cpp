@@ -44,9 +44,13 @@ Scene load_scene_reporting(const std::string& path, InputFiles* files) {
   return scene;
 }
 
-double machine_memory() {
-  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
-         static_cast<double>(::sysconf(_SC_PAGESIZE));
+void refuse_beyond_memory(const std::string& needs, double bytes) {
+  const double memory =
+      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  if (!(memory > 0) || bytes <= 0.5 * memory) return;
+  throw InputError(needs + " " + std::to_string(static_cast<long long>(bytes / (1 << 30))) +
+                   " GiB, more than half of this machine's " +
+                   std::to_string(static_cast<long long>(memory / (1 << 30))) + " GiB");
 }
 
 Solution load_solution_for(const Scene& scene, const std::string& scene_path,
@@ -81,13 +85,9 @@ Solution load_solution_for(const Scene& scene, const std::string& scene_path,
   const double octree_bytes =
       static_cast<double>(Octree::max_voxels(items)) * (sizeof(Voxel) + sizeof(int)) +
       static_cast<double>(items) * (sizeof(OctreeItem) + sizeof(int)) + corners * sizeof(Vec3);
-  if (const double memory = machine_memory(); memory > 0 && octree_bytes > 0.5 * memory) {
-    throw InputError(solution_path + ": the octree of its " + std::to_string(items) +
-                     " elements may need " +
-                     std::to_string(static_cast<long long>(octree_bytes / (1 << 30))) +
-                     " GiB, more than half of this machine's " +
-                     std::to_string(static_cast<long long>(memory / (1 << 30))) + " GiB");
-  }
+  refuse_beyond_memory(
+      solution_path + ": the octree of its " + std::to_string(items) + " elements may need",
+      octree_bytes);
   return solution;
 }
 
@@ -102,16 +102,11 @@ CameraSpec camera_for(const Scene& scene, const std::string& scene_path, const s
   // the EXR's floats), against the machine's memory: refuse before allocating.
   constexpr double kBytesPerPixel = 2 * 24 + 3 * 4 + 1 + 4 * 4;
   const double bytes = kBytesPerPixel * spec.width * static_cast<double>(spec.height);
-  const double memory = machine_memory();
-  if (memory > 0 && bytes > 0.5 * memory) {
-    const std::string source =
-        width > 0 || height > 0 ? command + " --width/--height" : scene_path + ": camera";
-    throw InputError(source + ": an image of " + std::to_string(spec.width) + " x " +
-                     std::to_string(spec.height) + " needs about " +
-                     std::to_string(static_cast<long long>(bytes / (1 << 30))) +
-                     " GiB, more than half of this machine's " +
-                     std::to_string(static_cast<long long>(memory / (1 << 30))) + " GiB");
-  }
+  const std::string source =
+      width > 0 || height > 0 ? command + " --width/--height" : scene_path + ": camera";
+  refuse_beyond_memory(source + ": an image of " + std::to_string(spec.width) + " x " +
+                           std::to_string(spec.height) + " needs about",
+                       bytes);
   return spec;
 }
 
@@ -126,9 +121,6 @@ namespace {
 double now_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-}  // namespace
-
-namespace {
 double progress_interval = 5;
 }  // namespace
 
@@ -148,13 +140,9 @@ std::string duration_text(double seconds) {
 }
 
 ProgressBar::ProgressBar(std::string label)
-    : ProgressBar(std::move(label), std::cerr, ::isatty(STDERR_FILENO) != 0, progress_interval) {}
-
-ProgressBar::ProgressBar(std::string label, std::ostream& out, bool terminal, double interval)
     : label_(std::move(label)),
-      out_(out),
-      terminal_(terminal),
-      interval_(interval),
+      terminal_(::isatty(STDERR_FILENO) != 0),
+      interval_(progress_interval),
       stage_start_(now_seconds()) {}
 
 ProgressBar::~ProgressBar() { finish(); }
@@ -191,22 +179,23 @@ void ProgressBar::update(double done, const std::string& detail) {
     last_ = t;
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(done * kWidth);
-    out_ << "\r" << label_ << " [" << std::string(filled, '#') << std::string(kWidth - filled, ' ')
-         << "] " << detail << (left.empty() ? "" : ", " + left) << "\x1b[K" << std::flush;
+    std::cerr << "\r" << label_ << " [" << std::string(filled, '#')
+              << std::string(kWidth - filled, ' ') << "] " << detail
+              << (left.empty() ? "" : ", " + left) << "\x1b[K" << std::flush;
     drawn_ = true;
     return;
   }
   if (last_ < 0) last_ = stage_start_;  // the first line after one interval
   if (t - last_ < interval_) return;
   last_ = t;
-  out_ << label_ << ": " << static_cast<int>(100 * done) << "%, " << detail << ", "
-       << duration_text(t - stage_start_) << (left.empty() ? "" : ", " + left) << "\n"
-       << std::flush;
+  std::cerr << label_ << ": " << static_cast<int>(100 * done) << "%, " << detail << ", "
+            << duration_text(t - stage_start_) << (left.empty() ? "" : ", " + left) << "\n"
+            << std::flush;
 }
 
 void ProgressBar::finish() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (drawn_) out_ << "\r\x1b[K" << std::flush;
+  if (drawn_) std::cerr << "\r\x1b[K" << std::flush;
   drawn_ = false;
 }
 

@@ -80,9 +80,10 @@ class ThreadLimit {
   std::unique_ptr<tbb::global_control> control_;
 };
 
-/// The machine's physical memory in bytes (0 when unknown). A command refuses, before the work,
-/// what would need more than half of it.
-double machine_memory();
+/// The one rule for refusing work before it starts: when `bytes` passes half the machine's
+/// physical memory, throws InputError "NEEDS <n> GiB, more than half of this machine's <m>
+/// GiB" (`needs` names the file or option and what it would make, "... needs about").
+void refuse_beyond_memory(const std::string& needs, double bytes);
 
 /// Where stderr is not a terminal (a log, a pipe, a batch job), ProgressBar prints a line every
 /// this many seconds; 0 prints none. The global option --progress sets it (default 5).
@@ -91,7 +92,7 @@ void set_progress_interval(double seconds);
 /// "12 s", "3 min 20 s", "2 h 05 min": a duration for people.
 std::string duration_text(double seconds);
 
-/// Progress on stderr with an estimate of the time left (from the rate so far of `done`):
+/// Progress on stderr with an estimate of the time left (time_left: from the recent rate):
 /// on a terminal a one-line bar, redrawn at most 10 times a second, which finish() clears;
 /// elsewhere a whole line every set_progress_interval() seconds, so that a log shows a long
 /// job is alive. update() may be called from several threads (the renders report from their
@@ -99,9 +100,6 @@ std::string duration_text(double seconds);
 class ProgressBar {
  public:
   explicit ProgressBar(std::string label);
-  /// The same, to `out`, drawn as on a terminal or not, with lines every `interval` seconds
-  /// (the tests' way in).
-  ProgressBar(std::string label, std::ostream& out, bool terminal, double interval);
   ~ProgressBar();
   /// `done` in [0, 1]; `detail` is shown after the bar.
   void update(double done, const std::string& detail);
@@ -118,7 +116,6 @@ class ProgressBar {
 
   std::mutex mutex_;
   std::string label_;
-  std::ostream& out_;
   bool terminal_;
   double interval_;
   double stage_start_;

@@ -11,7 +11,6 @@
 #include "formats/atomic_file.h"
 #include "formats/solution_io.h"
 #include "radiosity/solver.h"
-#include "scene/error.h"
 #include "scene/ray_caster.h"
 
 namespace rad::cli {
@@ -34,16 +33,12 @@ std::string rgb(const Rgb& v) {
 /// the number of elements and the memory it would need at the least (least_mesh_needs).
 void refuse_mesh_beyond_memory(const Scene& scene, const SolveOptions& o) {
   const MeshNeeds needs = least_mesh_needs(scene, o.settings);
-  const double memory = machine_memory();
-  if (!(memory > 0) || needs.bytes <= 0.5 * memory) return;
-  std::ostringstream message;
-  message << o.scene << ": meshed at --patch-size " << o.settings.patch_size
-          << " and --element-levels " << o.settings.element_levels << " it makes at least "
-          << static_cast<long long>(needs.elements) << " elements, which need at least "
-          << std::fixed << std::setprecision(1) << needs.bytes / (1 << 30)
-          << " GiB, more than half of this machine's " << memory / (1 << 30)
-          << " GiB: raise --patch-size or lower --element-levels";
-  throw InputError(message.str());
+  std::ostringstream what;
+  what << o.scene << ": meshed at --patch-size " << o.settings.patch_size
+       << " and --element-levels " << o.settings.element_levels << " it makes at least "
+       << static_cast<long long>(needs.elements) << " elements (raise --patch-size or lower "
+       << "--element-levels), which need at least";
+  refuse_beyond_memory(what.str(), needs.bytes);
 }
 
 void run_solve(const SolveOptions& o) {

@@ -196,6 +196,10 @@ TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
                        "makes at least "),
             std::string::npos)
       << r.err;
+  EXPECT_NE(r.err.find(" elements (raise --patch-size or lower --element-levels), which need at "
+                       "least "),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find(" GiB, more than half of this machine's "), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "c.vtp"));
 }
