@@ -310,6 +310,31 @@ void write_text_file(const std::filesystem::path& target,
   out.commit();
 }
 
+namespace {
+
+/// Throws InputError when `resolved` can never be written as a file: it is a folder, or the
+/// nearest of its folders that exists is not a folder (a file named like one of them). The same
+/// words as AtomicFile's own failure later, but before a long solve or render rather than after.
+void check_place(const std::string& what, const std::filesystem::path& path,
+                 const std::filesystem::path& resolved) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec)) {
+    throw InputError(path.string() + ": " + what + " is a folder; name a file in it");
+  }
+  for (std::filesystem::path folder = resolved.parent_path(); !folder.empty();
+       folder = folder.parent_path()) {
+    const std::filesystem::file_status status = std::filesystem::status(folder, ec);
+    if (std::filesystem::is_directory(status)) return;
+    if (std::filesystem::exists(status)) {
+      throw InputError(path.string() + ": cannot create folder '" +
+                       resolved.parent_path().string() + "': " + std::strerror(ENOTDIR));
+    }
+    if (folder == folder.parent_path()) return;  // the root
+  }
+}
+
+}  // namespace
+
 void check_outputs(const std::vector<std::pair<std::string, std::filesystem::path>>& outputs) {
   struct Seen {
     std::string what;
@@ -324,6 +349,7 @@ void check_outputs(const std::vector<std::pair<std::string, std::filesystem::pat
                        ", which it would overwrite; name another output");
     }
     if (writes_through(path)) continue;
+    check_place(what, path, resolved);
     for (const Seen& s : seen) {
       std::error_code ec;
       const bool same = s.path == resolved || std::filesystem::equivalent(s.path, resolved, ec);

@@ -83,8 +83,9 @@ void write_text_file(const std::filesystem::path& target,
 
 /// Throws InputError, before any work, when an output (a name for messages, "-o", and its path)
 /// is a file the process read as an input, or two outputs are the same file (by device and
-/// inode when they exist, by their resolved paths when not). Special files and stdout ("-")
-/// may repeat: they are written through.
+/// inode when they exist, by their resolved paths when not), or an output can never be a file
+/// (it is a folder, or under a file: a long solve would find out only at its end). Special
+/// files and stdout ("-") may repeat: they are written through.
 void check_outputs(const std::vector<std::pair<std::string, std::filesystem::path>>& outputs);
 
 }  // namespace rad

@@ -148,7 +148,9 @@ inline const std::vector<HostileInput>& hostile_inputs() {
        "cannot"},
       {"solution output under a file",
        "solve {d}/closed-cube/scene.json --patch-size 0.5 -o {h}/empty.json/s.vtp", "s.vtp",
-       "cannot"},
+       "cannot create folder"},
+      {"solution output a folder", "solve {d}/closed-cube/scene.json --patch-size 0.5 -o {h}",
+       "hostile", "is a folder"},
   };
   return cases;
 }
