@@ -252,6 +252,7 @@ class ProgressiveSolver {
   std::optional<ReceiverCulling> culling_;  ///< Made with the patches
   std::vector<int> receiver_patches_;       ///< This shot's: the patches that can receive it...
   std::vector<int> receivers_;              ///< ...and their leaves, in index order
+  std::vector<char> receiving_;             ///< Per patch: in receiver_patches_ (a scratch)
   std::vector<Rgb> ff_;               ///< This shot's visible form factor per element, per channel.
   std::vector<Rgb> back_ff_;          ///< The same at the backs of filters' elements...
   std::vector<Rgb> back_irradiance_;  ///< ...and what has reached those backs so far.

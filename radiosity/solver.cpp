@@ -264,6 +264,19 @@ void ProgressiveSolver::shoot(int shooter) {
 
 void ProgressiveSolver::collect_receivers() {
   receivers_.clear();
+  // Where many patches receive (a room's shot reaches most of the room), one pass over the
+  // leaves (kept in index order) picks theirs; where few do, their trees are walked and the
+  // leaves sorted. Both give the same list. (The sort of every shot's leaves was 8% of the
+  // Cornell box's solve, serial.)
+  if (receiver_patches_.size() * 8 >= patches().size()) {
+    receiving_.resize(patches().size(), 0);
+    for (const int p : receiver_patches_) receiving_[p] = 1;
+    for (const int e : leaves_) {
+      if (receiving_[elements()[e].patch]) receivers_.push_back(e);
+    }
+    for (const int p : receiver_patches_) receiving_[p] = 0;
+    return;
+  }
   for (const int p : receiver_patches_)
     near_field_.for_each_leaf(elements(), p, [&](int leaf) { receivers_.push_back(leaf); });
   std::sort(receivers_.begin(), receivers_.end());
