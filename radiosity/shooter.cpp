@@ -213,6 +213,12 @@ double Shooter::visible_fraction(const Vec3& x, const Patch& shooter, uint64_t k
   return static_cast<double>(passed) / (side * side);
 }
 
+std::pair<long long, long long> Shooter::counts() const {
+  std::pair<long long, long long> sum{0, 0};
+  for (const PairCounts& c : counts_) sum.first += c.pairs, sum.second += c.unhidden;
+  return sum;
+}
+
 bool Shooter::something_on_the_way(const Vec3& x, int polygon, const Patch& shooter) const {
   Vec3 centre = Vec3::Zero();
   for (const Vec3& c : shooter.corners) centre += c;
@@ -229,13 +235,14 @@ Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const
   if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return Rgb::Zero();
   const double ff = point_polygon_form_factor(x, n, shooter.corners);
   if (!(ff > 0)) return Rgb::Zero();
-  ++pairs_;
+  PairCounts& counted = counts_.local();
+  ++counted.pairs;
   // Nothing between them: every ray would pass, so cast none. (The question goes by reference:
   // a std::function holds that without allocating, once per pair.)
   const auto on_the_way = [&] { return something_on_the_way(x, polygon, shooter); };
   if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon,
                                        std::cref(on_the_way))) {
-    ++unhidden_;
+    ++counted.unhidden;
     return Rgb::Constant(ff);
   }
   if (!caster_.has_filters()) return Rgb::Constant(ff * visible_fraction(x, shooter, key, side));
