@@ -71,7 +71,19 @@ void ReceiverCulling::receivers(int shooter, std::vector<int>& out) const {
       [&](int p) {
         if (may_receive(p, shooter)) out.push_back(p);
       });
-  std::sort(out.begin(), out.end());
+  // Into index order. Where the receivers are many (half a building faces a wall), marks and
+  // one pass over all the patches: the sort of every shot's tens of thousands was 3% of the
+  // building's solve, serial.
+  if (out.size() * 8 < patches_.size()) {
+    std::sort(out.begin(), out.end());
+    return;
+  }
+  marked_.resize(patches_.size(), 0);
+  for (const int p : out) marked_[p] = 1;
+  out.clear();
+  for (size_t p = 0; p < marked_.size(); ++p) {
+    if (marked_[p]) out.push_back(static_cast<int>(p)), marked_[p] = 0;
+  }
 }
 
 }  // namespace rad

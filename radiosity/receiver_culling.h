@@ -23,7 +23,8 @@ class ReceiverCulling {
                   double in_plane, bool enabled);
 
   /// The patches that may receive from `shooter`, in index order (the shooter's own polygon
-  /// included no more than any other coplanar patch: never).
+  /// included no more than any other coplanar patch: never). One call at a time: it marks
+  /// patches in a scratch of its own.
   void receivers(int shooter, std::vector<int>& out) const;
 
   /// Whether patch `receiver` may receive from patch `shooter`: the pairwise rule that
@@ -39,6 +40,7 @@ class ReceiverCulling {
   double in_plane_;
   bool enabled_;
   BoxTree<3> tree_;
+  mutable std::vector<char> marked_;  ///< Per patch, receivers()'s scratch
 };
 
 }  // namespace rad
