@@ -82,7 +82,9 @@ void run_solve(const SolveOptions& o) {
             << (s.converged ? "" : " (stopped at --max-shots)") << ", " << s.seconds << " s\n"
             << "visibility: " << s.visibility_pairs << " point-patch pairs, "
             << 100.0 * s.unhidden_pairs / std::max(1LL, s.visibility_pairs)
-            << "% with nothing between them (no shadow rays)\n"
+            << "% with nothing between them, "
+            << 100.0 * s.hidden_pairs / std::max(1LL, s.visibility_pairs)
+            << "% hidden whole by one polygon (no shadow rays for either)\n"
             << "energy: emitted " << rgb(s.emitted) << " = absorbed " << rgb(s.absorbed)
             << " + escaped " << rgb(s.escaped) << " + unshot " << rgb(s.unshot)
             << (s.redirected == Rgb::Zero()

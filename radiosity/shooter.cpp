@@ -29,6 +29,23 @@ Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre) {
   return {centre, r};
 }
 
+namespace {
+
+/// Whether every corner of `p` turns the same way about its normal (no reflex corner; collinear
+/// corners allowed).
+bool is_convex(const Polygon& p) {
+  const size_t n = p.vertices.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& a = p.vertices[i];
+    const Vec3& b = p.vertices[(i + 1) % n];
+    const Vec3& c = p.vertices[(i + 2) % n];
+    if ((b - a).cross(c - b).dot(p.normal) < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double epsilon)
     : caster_(caster),
       culling_(caster.scene(), epsilon),
@@ -47,6 +64,12 @@ Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double
     return scene.materials[scene.polygons[piece.polygon].material].is_glossy_mirror();
   });
   chains_ = mirror_chains(pieces_, scene.mirror_depth, in_plane_);
+  solid_convex_.resize(scene.polygons.size());
+  for (size_t i = 0; i < scene.polygons.size(); ++i) {
+    const Polygon& p = scene.polygons[i];
+    const Material& m = scene.materials[p.material];
+    solid_convex_[i] = !m.is_filter() && !m.refracts() && is_convex(p);
+  }
 }
 
 Rgb Shooter::point_light_irradiance(const Vec3& x, const Vec3& n) const { return lights_(x, n); }
@@ -213,20 +236,51 @@ double Shooter::visible_fraction(const Vec3& x, const Patch& shooter, uint64_t k
   return static_cast<double>(passed) / (side * side);
 }
 
-std::pair<long long, long long> Shooter::counts() const {
-  std::pair<long long, long long> sum{0, 0};
-  for (const PairCounts& c : counts_) sum.first += c.pairs, sum.second += c.unhidden;
+Shooter::PairCounts Shooter::counts() const {
+  PairCounts sum;
+  for (const PairCounts& c : counts_) {
+    sum.pairs += c.pairs, sum.unhidden += c.unhidden, sum.hidden += c.hidden;
+  }
   return sum;
 }
 
-bool Shooter::something_on_the_way(const Vec3& x, int polygon, const Patch& shooter) const {
+bool Shooter::something_on_the_way(const Vec3& x, int polygon, const Patch& shooter,
+                                   int* blocker) const {
+  if (blocker) *blocker = -1;
   Vec3 centre = Vec3::Zero();
   for (const Vec3& c : shooter.corners) centre += c;
   centre /= static_cast<double>(shooter.corners.size());
   const std::optional<RayCaster::Segment> s = leg_segment(x, centre);
   if (!s) return false;
   const std::optional<Hit> hit = caster_.closest_hit(s->ray, s->t_min, s->t_max);
-  return hit && hit->polygon != polygon && hit->polygon != shooter.polygon;
+  if (!hit || hit->polygon == polygon || hit->polygon == shooter.polygon) return false;
+  if (blocker) *blocker = hit->polygon;
+  return true;
+}
+
+bool Shooter::hides_all(const Vec3& x, const Patch& shooter, int blocker) const {
+  if (!solid_convex_[blocker]) return false;
+  const Polygon& wall = caster_.scene().polygons[blocker];
+  const Vec3& origin = wall.vertices[0];
+  const double h_x = wall.normal.dot(x - origin);
+  if (!(std::abs(h_x) > epsilon_)) return false;
+  const size_t n = wall.vertices.size();
+  for (const Vec3& corner : shooter.corners) {
+    const double h_c = wall.normal.dot(corner - origin);
+    // The corner strictly on the other side, by more than epsilon.
+    if (!(h_x > 0 ? h_c < -epsilon_ : h_c > epsilon_)) return false;
+    const Vec3 crossing = x + (h_x / (h_x - h_c)) * (corner - x);
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3& a = wall.vertices[i];
+      const Vec3 edge = wall.vertices[(i + 1) % n] - a;
+      // Counter-clockwise about the normal: normal x edge points inward.
+      const Vec3 inward = wall.normal.cross(edge);
+      const double length = inward.norm();
+      if (!(length > 0)) continue;  // a repeated vertex: no edge
+      if (!(inward.dot(crossing - a) > epsilon_ * length)) return false;
+    }
+  }
+  return true;
 }
 
 Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
@@ -239,11 +293,17 @@ Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const
   ++counted.pairs;
   // Nothing between them: every ray would pass, so cast none. (The question goes by reference:
   // a std::function holds that without allocating, once per pair.)
-  const auto on_the_way = [&] { return something_on_the_way(x, polygon, shooter); };
+  int blocker = -1;
+  const auto on_the_way = [&] { return something_on_the_way(x, polygon, shooter, &blocker); };
   if (cull_ && !culling_.may_be_hidden(x, polygon, shooter.corners, shooter.polygon,
                                        std::cref(on_the_way))) {
     ++counted.unhidden;
     return Rgb::Constant(ff);
+  }
+  // The polygon the one ray met may hide all of the shooter: then no ray can pass.
+  if (blocker >= 0 && hides_all(x, shooter, blocker)) {
+    ++counted.hidden;
+    return Rgb::Zero();
   }
   if (!caster_.has_filters()) return Rgb::Constant(ff * visible_fraction(x, shooter, key, side));
   return ff * mean_over_samples(shooter, key, side, [&](const Vec3& y) { return leg(x, y); });

@@ -58,14 +58,35 @@ class Shooter {
   /// True when a polygon other than the receiver's and the shooter's crosses the segment from
   /// x to the shooter's centre: one ray, which ShadowCulling::may_be_hidden asks for before it
   /// builds a shaft (its `on_the_way`).
-  bool something_on_the_way(const Vec3& x, int polygon, const Patch& shooter) const;
+  /// `blocker`, when given, is set to the polygon the ray meets (-1 when none).
+  bool something_on_the_way(const Vec3& x, int polygon, const Patch& shooter,
+                            int* blocker = nullptr) const;
+
+  /// True when polygon `blocker` alone hides the whole of the shooter from x, so that every
+  /// shadow ray would be blocked and the visible fraction is exactly 0 without casting one:
+  /// the blocker is opaque and convex, its plane has x on one side and every corner of the
+  /// shooter on the other (each by more than epsilon), and the segment from x to each corner
+  /// crosses it more than epsilon inside its edges. Proof: the shooter lies in the hull of
+  /// its corners; the segments from x to the points of that hull meet the blocker's plane in
+  /// the hull of the corners' crossings (a central projection from x, defined on all of them
+  /// since the plane separates x from each, maps segments to segments and so a hull to the
+  /// hull of the images); that hull lies inside the convex blocker, inset by epsilon, as its
+  /// corners do. So each shadow ray meets the blocker's interior, farther than epsilon from
+  /// both of its ends, where the caster's watertight test finds it (the same answer as the
+  /// rays: the solution's bytes do not change). A wall between two rooms hides most pairs of a
+  /// building this way, and the rays were most of its solve.
+  bool hides_all(const Vec3& x, const Patch& shooter, int blocker) const;
 
   /// Whether the scene has mirror chains whose images a receiver may see the shooter in (then
   /// a receiver behind the shooter's plane can still receive from it).
   bool sees_images() const { return !chains_.empty(); }
 
-  /// Pairs asked about, and those no polygon could hide: (visibility_pairs, unhidden_pairs).
-  std::pair<long long, long long> counts() const;
+  /// Pairs asked about, those no polygon could hide, and those one polygon hides whole (both
+  /// without rays).
+  struct PairCounts {
+    long long pairs = 0, unhidden = 0, hidden = 0;
+  };
+  PairCounts counts() const;
 
  private:
   Rgb image_form_factor(const Vec3& x, const Vec3& n, const Patch& shooter,
@@ -87,13 +108,13 @@ class Shooter {
   /// The pairs' counts, per thread: one atomic counter that both threads added to at every
   /// pair (14 million on the Cornell box) cost an eighth of the demo's solve in cache-line
   /// traffic. Cache-aligned per thread (tbb's default allocator), summed by counts().
-  struct PairCounts {
-    long long pairs = 0, unhidden = 0;
-  };
   mutable tbb::enumerable_thread_specific<PairCounts> counts_;
   int side_ = 4;
   uint64_t seed_ = 1;
   double in_plane_ = 0;
+  /// Per scene polygon: opaque (no filter, no refraction) and convex, a candidate for
+  /// hides_all().
+  std::vector<char> solid_convex_;
   std::vector<MirrorPiece> pieces_;
   std::vector<std::vector<int>> chains_;  ///< Of at most Scene::mirror_depth reflections
   PointLightIrradiance lights_;

@@ -112,8 +112,9 @@ struct SolveStats {
   /// the bound was kept).
   Rgb error_bound = Rgb::Constant(-1);
   /// (receiver point, shooter) pairs whose visibility was needed, and of those the ones no
-  /// polygon could hide (no rays cast). Counted by the solve, not saved in the solution file.
-  long long visibility_pairs = 0, unhidden_pairs = 0;
+  /// polygon could hide and the ones one polygon hides whole (Shooter::hides_all): no rays cast
+  /// for either. Counted by the solve, not saved in the solution file.
+  long long visibility_pairs = 0, unhidden_pairs = 0, hidden_pairs = 0;
 };
 
 /// A solved (or loaded) radiosity solution.

@@ -12,7 +12,6 @@
 #include <functional>
 #include <numbers>
 #include <optional>
-#include <tuple>
 #include <utility>
 
 #include "geometry/lambert.h"
@@ -195,7 +194,10 @@ Solution ProgressiveSolver::finish(double seconds) {
   stats().patches = static_cast<int>(patches().size());
   stats().elements = static_cast<int>(leaves_.size());
   stats().seconds = seconds;
-  std::tie(stats().visibility_pairs, stats().unhidden_pairs) = rays_.counts();
+  const Shooter::PairCounts counted = rays_.counts();
+  stats().visibility_pairs = counted.pairs;
+  stats().unhidden_pairs = counted.unhidden;
+  stats().hidden_pairs = counted.hidden;
   return std::move(solution_);
 }
 

@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <random>
 
 #include "radiosity/mesher.h"
 #include "radiosity/shooter.h"
 #include "scene/ray_caster.h"
 #include "tests/random_scenes.h"
+#include "tests/scene_builder.h"
 
 namespace rad {
 namespace {
@@ -135,6 +137,105 @@ TEST(ShadowCulling, ARayToTheShootersCentreStandsForTheScanOnlyWhenTheScanAgrees
   // Both answers occur: the shortcut takes many pairs, and leaves others to the scan.
   EXPECT_GT(shortcut, 200);
   EXPECT_GT(scanned, 50);
+}
+
+/// Whether some polygon other than the receiver's and the shooter's crosses segment x-y.
+bool blocked_by_any(const Scene& scene, const Vec3& x, const Vec3& y, int receiver, int shooter) {
+  for (size_t p = 0; p < scene.polygons.size(); ++p) {
+    if (static_cast<int>(p) == receiver || static_cast<int>(p) == shooter) continue;
+    if (segment_crosses(scene.polygons[p], x, y)) return true;
+  }
+  return false;
+}
+
+TEST(ShadowCulling, APolygonSaidToHideAllOfAShooterBlocksEverySegmentToIt) {
+  // Shooter::hides_all lets the solver skip the rays of a pair one polygon hides whole. Where
+  // it says so, every segment from the point to the shooter (its corners and 60 points inside)
+  // must cross some polygon by the exact segment test above, and the rays (culling off: no
+  // shortcut) must find nothing visible. Random scenes (convex, concave, interpenetrating,
+  // coplanar), receiver points at corners and edges too; and where the polygon on the way does
+  // not hide it all, some pairs have a segment passing (the test would see a claim too many).
+  std::mt19937_64 rng(17);
+  long hidden = 0, partly = 0, violations = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    test::RandomSceneMaker maker(seed);
+    const Scene scene = maker.random_scene().scene;
+    const RayCaster caster(scene);
+    const double epsilon = 1e-5 * scene.bounds().diagonal();
+    const Shooter with_shortcut(caster, SolverSettings{}, epsilon);
+    SolverSettings rays_only;
+    rays_only.shaft_culling = false;
+    const Shooter all_rays(caster, rays_only, epsilon);
+    const std::vector<Patch> patches = make_patches(scene, 0.4);
+    for (int trial = 0; trial < 2000; ++trial) {
+      const Patch& receiver = patches[rng() % patches.size()];
+      const Patch& shooter = patches[rng() % patches.size()];
+      if (receiver.polygon == shooter.polygon) continue;
+      Vec3 x = point_in(receiver.corners, rng);
+      const size_t k = receiver.corners.size();
+      if (trial % 10 == 0) x = receiver.corners[rng() % k];
+      if (trial % 10 == 1) {
+        const size_t i = rng() % k;
+        x = 0.5 * (receiver.corners[i] + receiver.corners[(i + 1) % k]);
+      }
+      int blocker = -1;
+      if (!with_shortcut.something_on_the_way(x, receiver.polygon, shooter, &blocker)) continue;
+      std::vector<Vec3> ends = shooter.corners;
+      for (int j = 0; j < 60; ++j) ends.push_back(point_in(shooter.corners, rng));
+      bool all_blocked = true;
+      for (const Vec3& y : ends)
+        all_blocked &= blocked_by_any(scene, x, y, receiver.polygon, shooter.polygon);
+      if (!with_shortcut.hides_all(x, shooter, blocker)) {
+        partly += !all_blocked;
+        continue;
+      }
+      ++hidden;
+      const Rgb rays = all_rays.visible_form_factor(x, receiver.normal, receiver.polygon, shooter,
+                                                    static_cast<uint64_t>(trial));
+      if ((!all_blocked || rays != Rgb::Zero()) && ++violations <= 3) {
+        ADD_FAILURE() << "seed " << seed << ": x " << x.transpose() << " on polygon "
+                      << receiver.polygon << ", shooter on polygon " << shooter.polygon
+                      << " said hidden whole by polygon " << blocker << ", but "
+                      << (all_blocked ? "the rays see " + std::to_string(rays.maxCoeff())
+                                      : std::string("a segment passes"));
+      }
+    }
+  }
+  EXPECT_EQ(violations, 0);
+  EXPECT_GT(hidden, 200) << "pairs hidden whole";
+  std::cout << hidden << " pairs hidden whole, " << partly << " with a segment passing by\n";
+  EXPECT_GT(partly, 100) << "pairs with a polygon on the way and a segment passing beside it";
+}
+
+TEST(ShadowCulling, AWallHidesAShooterWholeOnlyWhereItCoversItsCornersFromThePoint) {
+  // The point at the origin, a 2 x 2 shooter 2 above it facing down, and between them at
+  // height 1 a square wall of half-width w: seen from the point, the shooter's corners cross
+  // the wall's plane at (+-0.5, +-0.5), so the wall hides it whole when w > 0.5 (by more than
+  // epsilon), and not when w < 0.5 (the rays then pass by its edges); nor when the wall is a
+  // filter, nor when the point lies in the wall's plane.
+  for (const double w : {0.4, 0.499, 0.501, 0.6, 3.0}) {
+    for (const bool filter : {false, true}) {
+      test::SceneBuilder b;
+      const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
+      const int pane = b.material("pane", Rgb::Zero(), Rgb::Zero(), Rgb::Constant(0.5));
+      const int floor = b.rectangle(-3, 3, -3, 3, 0, false, grey);
+      const int wall = b.rectangle(-w, w, -w, w, 1, true, filter ? pane : grey);
+      b.rectangle(-1, 1, -1, 1, 2, true, grey);
+      const RayCaster caster(b.scene());
+      const Shooter rays(caster, SolverSettings{}, 1e-6);
+      const std::vector<Patch> patches = make_patches(b.scene(), 10);
+      const Patch& shooter = patches.back();
+      ASSERT_EQ(shooter.polygon, 2);
+      const bool hides = rays.hides_all(Vec3(0, 0, 0), shooter, wall);
+      EXPECT_EQ(hides, w > 0.5 && !filter) << "w " << w << (filter ? ", a filter" : "");
+      EXPECT_FALSE(rays.hides_all(Vec3(0, 0, 1), shooter, wall)) << "x in the wall's plane";
+      // The solver's path agrees: none visible where it hides all, some where it does not
+      // (away from w = 0.5, where the rays past the edge are too few to be sure of one).
+      if (std::abs(w - 0.5) < 0.05) continue;
+      const Rgb ff = rays.visible_form_factor(Vec3(0, 0, 0), Vec3(0, 0, 1), floor, shooter, 7);
+      EXPECT_EQ(ff == Rgb::Zero(), w > 0.5 && !filter) << "w " << w;
+    }
+  }
 }
 
 }  // namespace
