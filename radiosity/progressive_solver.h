@@ -249,10 +249,12 @@ class ProgressiveSolver {
   std::vector<std::pair<int, Rgb>> to_patch_;  ///< distribute()'s per-leaf shares of unshot
   std::vector<char> near_;  ///< This shot: the element is in the shooter's near field
   std::vector<int> leaves_;
-  std::optional<ReceiverCulling> culling_;  ///< Made with the patches
-  std::vector<int> receiver_patches_;       ///< This shot's: the patches that can receive it...
-  std::vector<int> receivers_;              ///< ...and their leaves, in index order
-  std::vector<char> receiving_;             ///< Per patch: in receiver_patches_ (a scratch)
+  std::vector<double> power_;  ///< Per patch, its unshot power (shoot_until_converged's scratch)
+  std::optional<ReceiverCulling> culling_;     ///< Made with the patches
+  std::vector<int> receiver_patches_;          ///< This shot's: the patches that can receive it...
+  std::vector<int> receivers_;                 ///< ...and their leaves, in index order
+  std::vector<char> receiving_;                ///< Per patch: in receiver_patches_ (a scratch)
+  std::vector<std::vector<int>> leaf_blocks_;  ///< collect_receivers()'s, per block of leaves
   std::vector<Rgb> ff_;               ///< This shot's visible form factor per element, per channel.
   std::vector<Rgb> back_ff_;          ///< The same at the backs of filters' elements...
   std::vector<Rgb> back_irradiance_;  ///< ...and what has reached those backs so far.

@@ -1,6 +1,10 @@
 #include "radiosity/receiver_culling.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 namespace rad {
@@ -29,7 +33,18 @@ ReceiverCulling::ReceiverCulling(const std::vector<Patch>& patches,
       receives_at_back_(std::move(receives_at_back)),
       in_plane_(in_plane),
       enabled_(enabled),
-      tree_(enabled ? BoxTree<3>(patch_boxes(patches)) : BoxTree<3>()) {}
+      tree_(enabled ? BoxTree<3>(patch_boxes(patches)) : BoxTree<3>()) {
+  if (!enabled) return;
+  plates_.resize(patches.size());
+  for (size_t i = 0; i < patches.size(); ++i) {
+    Plate& plate = plates_[i];
+    if (patches[i].corners.size() > plate.corners.size())
+      throw std::logic_error("ReceiverCulling: a patch of more than 4 corners");
+    plate.count = static_cast<int>(patches[i].corners.size());
+    std::copy(patches[i].corners.begin(), patches[i].corners.end(), plate.corners.begin());
+    plate.normal = patches[i].normal;
+  }
+}
 
 double ReceiverCulling::highest_above(const Eigen::AlignedBox3d& box, int shooter) const {
   // A linear function's largest value over a box is at the corner that each axis picks.
@@ -41,19 +56,19 @@ double ReceiverCulling::highest_above(const Eigen::AlignedBox3d& box, int shoote
 
 bool ReceiverCulling::may_receive(int receiver, int shooter) const {
   if (!enabled_) return true;
-  const Patch& r = patches_[receiver];
-  const Patch& s = patches_[shooter];
+  const Plate& r = plates_[receiver];
+  const Plate& s = plates_[shooter];
   // Some point of the receiver in front of the shooter's plane (beyond the tolerance)...
   const auto above_shooter = [&](const Vec3& c) {
     return height(c, s.corners[0], s.normal) > in_plane_;
   };
-  if (std::none_of(r.corners.begin(), r.corners.end(), above_shooter)) return false;
+  if (std::none_of(r.corners.begin(), r.corners.begin() + r.count, above_shooter)) return false;
   if (receives_at_back_[receiver]) return true;
   // ...and some point of the shooter in front of the receiver's.
   const auto above_receiver = [&](const Vec3& c) {
     return height(c, r.corners[0], r.normal) > in_plane_;
   };
-  return std::any_of(s.corners.begin(), s.corners.end(), above_receiver);
+  return std::any_of(s.corners.begin(), s.corners.begin() + s.count, above_receiver);
 }
 
 void ReceiverCulling::receivers(int shooter, std::vector<int>& out) const {
@@ -66,21 +81,27 @@ void ReceiverCulling::receivers(int shooter, std::vector<int>& out) const {
   // A box wholly at or behind the shooter's plane (to half the tolerance: the rounding of the
   // box's corners against the patch's own is far below it) holds no receiver that
   // may_receive() would take: its patches' corners all lie within the tolerance.
+  candidates_.clear();
   tree_.select(
       [&](const Eigen::AlignedBox3d& box) { return highest_above(box, shooter) > 0.5 * in_plane_; },
-      [&](int p) {
-        if (may_receive(p, shooter)) out.push_back(p);
-      });
-  // Into index order. Where the receivers are many (half a building faces a wall), marks and
-  // one pass over all the patches: the sort of every shot's tens of thousands was 3% of the
-  // building's solve, serial.
-  if (out.size() * 8 < patches_.size()) {
+      [&](int p) { candidates_.push_back(p); });
+  // Where the candidates are many (half a building faces a wall), the pairwise test runs in
+  // parallel into marks, and one pass over all the patches reads them in index order: the
+  // test and the sort of every shot's tens of thousands, serial, were a tenth of the
+  // building's solve. Where they are few, serially and a sort. Both give the same list.
+  if (candidates_.size() * 8 < patches_.size()) {
+    for (const int p : candidates_) {
+      if (may_receive(p, shooter)) out.push_back(p);
+    }
     std::sort(out.begin(), out.end());
     return;
   }
   marked_.resize(patches_.size(), 0);
-  for (const int p : out) marked_[p] = 1;
-  out.clear();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates_.size(), 2048),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      for (size_t k = range.begin(); k != range.end(); ++k)
+                        marked_[candidates_[k]] = may_receive(candidates_[k], shooter);
+                    });
   for (size_t p = 0; p < marked_.size(); ++p) {
     if (marked_[p]) out.push_back(static_cast<int>(p)), marked_[p] = 0;
   }

@@ -6,6 +6,7 @@
 /// leaving such receivers out of a shot changes nothing they hold. A finely tessellated floor
 /// is the case that needs it: its triangles are coplanar, each of its patches shoots, and each
 /// shot used to ask every element of the floor for a form factor of zero.
+#include <array>
 #include <vector>
 
 #include "geometry/box_tree.h"
@@ -35,12 +36,22 @@ class ReceiverCulling {
   /// The height of the farthest point of `box` above the plane of `shooter`.
   double highest_above(const Eigen::AlignedBox3d& box, int shooter) const;
 
+  /// What may_receive() reads of a patch, in one place: the test runs for half the building's
+  /// patches at every shot, and a Patch keeps its corners behind a pointer of their own.
+  struct Plate {
+    std::array<Vec3, 4> corners;  ///< The first `count` are the patch's
+    Vec3 normal;
+    int count = 0;
+  };
+
   const std::vector<Patch>& patches_;
+  std::vector<Plate> plates_;  ///< Per patch
   std::vector<char> receives_at_back_;
   double in_plane_;
   bool enabled_;
   BoxTree<3> tree_;
-  mutable std::vector<char> marked_;  ///< Per patch, receivers()'s scratch
+  mutable std::vector<int> candidates_;  ///< receivers()'s scratch: the patches its boxes take...
+  mutable std::vector<char> marked_;     ///< ...and, per patch, whether it receives
 };
 
 }  // namespace rad

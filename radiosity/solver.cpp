@@ -140,12 +140,19 @@ void ProgressiveSolver::shoot_until_converged(
     const std::function<void(const SolveProgress&)>& progress) {
   const double emitted = stats().emitted.sum();
   for (bool shot = false;; shot = true) {
+    // Each patch's unshot power in parallel (a pass over every patch each shot: on the
+    // building, 74,000 patches 29,000 times), then summed and searched serially in index order.
+    power_.resize(patches().size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, power_.size(), 4096),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        for (size_t p = range.begin(); p != range.end(); ++p)
+                          power_[p] = unshot_power(static_cast<int>(p));
+                      });
     int shooter = -1;
     double largest = 0, remaining = 0;
-    for (size_t p = 0; p < patches().size(); ++p) {
-      const double power = unshot_power(static_cast<int>(p));
-      remaining += power;
-      if (power > largest) largest = power, shooter = static_cast<int>(p);  // ties: lowest index
+    for (size_t p = 0; p < power_.size(); ++p) {
+      remaining += power_[p];
+      if (power_[p] > largest) largest = power_[p], shooter = static_cast<int>(p);  // ties: lowest
     }
     stats().unshot_fraction = emitted > 0 ? remaining / emitted : 0;
     if (progress && shot) {  // the state after the last shot
@@ -273,9 +280,18 @@ void ProgressiveSolver::collect_receivers() {
   if (receiver_patches_.size() * 8 >= patches().size()) {
     receiving_.resize(patches().size(), 0);
     for (const int p : receiver_patches_) receiving_[p] = 1;
-    for (const int e : leaves_) {
-      if (receiving_[elements()[e].patch]) receivers_.push_back(e);
-    }
+    // Fixed blocks of leaves in parallel, each into a list of its own, joined in block order.
+    constexpr size_t block = 8192;
+    leaf_blocks_.resize((leaves_.size() + block - 1) / block);
+    tbb::parallel_for(size_t(0), leaf_blocks_.size(), [&](size_t b) {
+      std::vector<int>& picked = leaf_blocks_[b];
+      picked.clear();
+      for (size_t k = b * block; k < std::min(leaves_.size(), (b + 1) * block); ++k) {
+        if (receiving_[elements()[leaves_[k]].patch]) picked.push_back(leaves_[k]);
+      }
+    });
+    for (const std::vector<int>& picked : leaf_blocks_)
+      receivers_.insert(receivers_.end(), picked.begin(), picked.end());
     for (const int p : receiver_patches_) receiving_[p] = 0;
     return;
   }
