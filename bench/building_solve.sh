@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# Issue 21: solving the procedural building (data/building/make_building.py) as it grows, this
-# commit's `radiosity solve` against an earlier commit's (before the shaft culling's scan was
-# replaced by one ray where something lies on the way, and its pass over every polygon by a box
-# tree: radiosity/shooter.h, radiosity/shadow_culling.h). Writes bench/results/building_solve.md.
+# Solving the procedural building (data/building/make_building.py) as it grows, this commit's
+# `radiosity solve` against an earlier commit's (by default 8587d0f: before a shot's receivers
+# were put in order without a sort and picked in parallel, the shooter's pair counts kept per
+# thread, and a pair one polygon hides whole left without shadow rays: radiosity/shooter.h,
+# radiosity/receiver_culling.h). Writes bench/results/building_solve.md.
 #
 # Each size runs the two binaries back to back, PAIRS times, and checks that their solutions
 # are the same bytes. The default building (46,005 polygons) runs with this commit's binary
 # only: the earlier one's rate is measured over its first SHOTS shots instead (it would take
-# hours). About 60 minutes on 2 cores (5 more to build the earlier commit's CLI, once).
+# long). About 15 minutes on 2 cores (5 more to build the earlier commit's CLI, once).
 #
 #   bash bench/building_solve.sh [BUILD_DIR] [BASE_COMMIT] [PAIRS] [SHOTS]
 set -euo pipefail
@@ -15,7 +16,7 @@ cd "$(dirname "$0")/.."
 source bench/provenance.sh
 source bench/earlier_binary.sh
 build=${1:-build}
-base=${2:-908448c}
+base=${2:-8587d0f}
 pairs=${3:-3}
 shots=${4:-300}
 out=bench/results
