@@ -210,9 +210,10 @@ def main():
         "From [`bench/results/building_solve.md`](../bench/results/building_solve.md)",
         "(`bash bench/building_solve.sh`): `radiosity solve` on buildings of `data/building/` as",
         "they grow, with the coarse settings a building needs, this commit's binary against the one",
-        "before the solver's shaft culling scanned a box tree and asked one ray first (same",
-        "solutions to the byte); the default building (3 storeys of 5 x 5 rooms) whole with this",
-        "commit's only. Ratios new / earlier, medians over the pairs.",
+        "(named in the table's file) before a shot's receivers were picked in parallel and a pair",
+        "one polygon hides whole was left without shadow rays (same solutions to the byte); the",
+        "default building (3 storeys of 5 x 5 rooms) whole with this commit's only. Ratios new /",
+        "earlier, medians over the pairs.",
     ], lambda line: True, lambda lines: [line for line in lines if line.startswith("The whole")] +
        ["", "![solve time against polygons](images/building-solve.png)", ""])
     w("## Stability")
