@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <optional>
 #include <random>
 
 #include "radiosity/mesher.h"
@@ -47,6 +48,29 @@ Vec3 point_in(const std::vector<Vec3>& corners, std::mt19937_64& rng) {
     sum += w * c, total += w;
   }
   return sum / total;
+}
+
+/// A random receiver point and shooter on two polygons, for trial number `trial`: a fifth of
+/// the points at a corner or an edge's midpoint of the receiver, where the methods fail. None
+/// when both patches lie on one polygon.
+struct PointAndShooter {
+  const Patch* receiver;
+  const Patch* shooter;
+  Vec3 x;
+};
+std::optional<PointAndShooter> random_pair(const std::vector<Patch>& patches, int trial,
+                                           std::mt19937_64& rng) {
+  const Patch& receiver = patches[rng() % patches.size()];
+  const Patch& shooter = patches[rng() % patches.size()];
+  if (receiver.polygon == shooter.polygon) return std::nullopt;
+  Vec3 x = point_in(receiver.corners, rng);
+  const size_t k = receiver.corners.size();
+  if (trial % 10 == 0) x = receiver.corners[rng() % k];
+  if (trial % 10 == 1) {
+    const size_t i = rng() % k;
+    x = 0.5 * (receiver.corners[i] + receiver.corners[(i + 1) % k]);
+  }
+  return PointAndShooter{&receiver, &shooter, x};
 }
 
 TEST(ShadowCulling, WhatItCullsNoPolygonHides) {
@@ -107,17 +131,10 @@ TEST(ShadowCulling, ARayToTheShootersCentreStandsForTheScanOnlyWhenTheScanAgrees
     const ShadowCulling culling(scene, epsilon);
     const std::vector<Patch> patches = make_patches(scene, 0.4);
     for (int trial = 0; trial < 400; ++trial) {
-      const Patch& receiver = patches[rng() % patches.size()];
-      const Patch& shooter = patches[rng() % patches.size()];
-      if (receiver.polygon == shooter.polygon) continue;
-      // A fifth of the points at a corner or an edge's midpoint of the receiver.
-      Vec3 x = point_in(receiver.corners, rng);
-      const size_t k = receiver.corners.size();
-      if (trial % 10 == 0) x = receiver.corners[rng() % k];
-      if (trial % 10 == 1) {
-        const size_t i = rng() % k;
-        x = 0.5 * (receiver.corners[i] + receiver.corners[(i + 1) % k]);
-      }
+      const std::optional<PointAndShooter> pair = random_pair(patches, trial, rng);
+      if (!pair) continue;
+      const Patch &receiver = *pair->receiver, &shooter = *pair->shooter;
+      const Vec3& x = pair->x;
       const bool on_the_way = shooter_rays.something_on_the_way(x, receiver.polygon, shooter);
       const bool hidden =
           culling.may_be_hidden(x, receiver.polygon, shooter.corners, shooter.polygon);
@@ -168,16 +185,10 @@ TEST(ShadowCulling, APolygonSaidToHideAllOfAShooterBlocksEverySegmentToIt) {
     const Shooter all_rays(caster, rays_only, epsilon);
     const std::vector<Patch> patches = make_patches(scene, 0.4);
     for (int trial = 0; trial < 2000; ++trial) {
-      const Patch& receiver = patches[rng() % patches.size()];
-      const Patch& shooter = patches[rng() % patches.size()];
-      if (receiver.polygon == shooter.polygon) continue;
-      Vec3 x = point_in(receiver.corners, rng);
-      const size_t k = receiver.corners.size();
-      if (trial % 10 == 0) x = receiver.corners[rng() % k];
-      if (trial % 10 == 1) {
-        const size_t i = rng() % k;
-        x = 0.5 * (receiver.corners[i] + receiver.corners[(i + 1) % k]);
-      }
+      const std::optional<PointAndShooter> pair = random_pair(patches, trial, rng);
+      if (!pair) continue;
+      const Patch &receiver = *pair->receiver, &shooter = *pair->shooter;
+      const Vec3& x = pair->x;
       int blocker = -1;
       if (!with_shortcut.something_on_the_way(x, receiver.polygon, shooter, &blocker)) continue;
       std::vector<Vec3> ends = shooter.corners;
