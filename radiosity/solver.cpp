@@ -141,7 +141,7 @@ void ProgressiveSolver::shoot_until_converged(
   const double emitted = stats().emitted.sum();
   for (bool shot = false;; shot = true) {
     // Each patch's unshot power in parallel (a pass over every patch each shot: on the
-    // building, 74,000 patches 29,000 times), then summed and searched serially in index order.
+    // building, 74,000 patches 30,000 times), then summed and searched serially in index order.
     power_.resize(patches().size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, power_.size(), 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
