@@ -3,13 +3,16 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
+#include <string>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "formats/atomic_file.h"
 #include "formats/solution_io.h"
+#include "radiosity/hierarchical_solver.h"
 #include "radiosity/solver.h"
 #include "scene/ray_caster.h"
 
@@ -47,13 +50,29 @@ void run_solve(const SolveOptions& o) {
   check_outputs({{"the solution (-o)", o.output}});  // before the work, not after it
   refuse_mesh_beyond_memory(scene, o);
   const RayCaster caster(scene);
+  SolverSettings settings = o.settings;
+  const bool hierarchical = settings.method == SolverSettings::Method::hierarchical;
+  if (hierarchical) {
+    if (const std::string missing = hierarchical_unsupported(scene); !missing.empty()) {
+      std::cerr << "solve: the hierarchical solver does not carry " << missing
+                << " yet; solving progressively\n";
+      settings.method = SolverSettings::Method::progressive;
+    }
+  }
   using Stage = SolveProgress::Stage;
   ProgressBar bar("solve (meshing)");
   Stage shown = Stage::meshing;
-  Solution solution = solve(caster, o.settings, [&](const SolveProgress& p) {
+  Solution solution = solve(caster, settings, [&](const SolveProgress& p) {
     if (p.stage != shown) {
       shown = p.stage;
-      bar.stage(p.stage == Stage::burying ? "solve (burying)" : "solve (shooting)");
+      bar.stage(p.stage == Stage::burying                                 ? "solve (burying)"
+                : p.stage == Stage::linking                               ? "solve (linking)"
+                : settings.method == SolverSettings::Method::hierarchical ? "solve (gathering)"
+                                                                          : "solve (shooting)");
+    }
+    if (p.stage == Stage::linking) {
+      bar.update(p.stage_done, "patches linked to their sources");
+      return;
     }
     if (p.stage == Stage::meshing) {
       bar.update(p.stage_done, "polygons into patches and elements");
@@ -66,8 +85,11 @@ void run_solve(const SolveOptions& o) {
     // Progress on a log scale: from 1 (nothing shot) to the target fraction.
     const double done = std::log(std::max(p.unshot_fraction, 1e-300)) / std::log(p.target_fraction);
     std::ostringstream detail;
-    detail << "unshot " << std::setprecision(3) << 100 * p.unshot_fraction << "% (target "
-           << 100 * p.target_fraction << "%), shot " << p.shots << ", elements " << p.elements;
+    detail << (settings.method == SolverSettings::Method::hierarchical ? "change " : "unshot ")
+           << std::setprecision(3) << 100 * p.unshot_fraction << "% (target "
+           << 100 * p.target_fraction << "%), "
+           << (settings.method == SolverSettings::Method::hierarchical ? "sweep " : "shot ")
+           << p.shots << ", elements " << p.elements;
     bar.update(done, detail.str());
   });
   bar.finish();
@@ -77,7 +99,9 @@ void run_solve(const SolveOptions& o) {
 
   const SolveStats& s = solution.stats;
   std::cerr << std::setprecision(4) << "solve: " << s.patches << " patches, " << s.elements
-            << " elements (" << s.refined << " split), " << s.shots << " shots, unshot "
+            << " elements (" << s.refined << " split), " << s.shots
+            << (s.links > 0 ? " sweeps over " + std::to_string(s.links) + " links, last change "
+                            : " shots, unshot ")
             << 100 * s.unshot_fraction << "% of emitted"
             << (s.converged ? "" : " (stopped at --max-shots)") << ", " << s.seconds << " s\n"
             << "visibility: " << s.visibility_pairs << " point-patch pairs, "
@@ -92,8 +116,10 @@ void run_solve(const SolveOptions& o) {
                     : " + redirected by glossy surfaces, not carried " + rgb(s.redirected))
             << "\n"
             << "solution's own error: every element within " << rgb(s.error_bound)
-            << " W/m^2 of the exact solution of its discrete system (certified; the light not "
-               "yet shot, not the meshing: docs/algorithms.md)\n"
+            << " W/m^2 of the exact solution of its discrete system (certified; "
+            << (s.links > 0 ? "the sweeps not yet made, not the links' approximations"
+                            : "the light not yet shot")
+            << ", not the meshing: docs/algorithms.md)\n"
             << "wrote " << o.output << "\n";
 }
 
@@ -125,7 +151,12 @@ void add_solve_command(CLI::App& app, Run& run) {
       "Shows its progress with the time left (a bar on a terminal, else a line every --progress\n"
       "seconds). Refuses before any work a mesh that would need more than half the machine's\n"
       "memory, with the elements and memory it would need at the least. Interrupted, it\n"
-      "leaves no partial file.");
+      "leaves no partial file.\n"
+      "--solver hierarchical: hierarchical radiosity with clustering instead (links between\n"
+      "each patch and whole clusters of patches far from it, Jacobi sweeps until the last\n"
+      "sweep's change is below --unshot of the emitted power); plain diffuse scenes, no\n"
+      "adaptive refinement yet; --refine-threshold and --refine-passes do not apply. Against\n"
+      "the progressive solver: bench/results/hierarchical_solve.md.");
   sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
   sub->add_option("--patch-size", s.patch_size,
@@ -166,6 +197,16 @@ void add_solve_command(CLI::App& app, Run& run) {
                   "Shadow rays per receiver point and shooter")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
+  sub->add_option("--solver", s.method,
+                  "progressive: progressive refinement (every feature); hierarchical: "
+                  "hierarchical radiosity with clustering, plain diffuse scenes (others are "
+                  "solved progressively, with a line that says so)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, SolverSettings::Method>{
+              {"progressive", SolverSettings::Method::progressive},
+              {"hierarchical", SolverSettings::Method::hierarchical}},
+          CLI::ignore_case))
+      ->default_str("progressive");
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
   sub->add_flag("--opaque-glass{false}", s.glass_as_filters,
                 "Keep refracting objects opaque and black to the solver (by default light "

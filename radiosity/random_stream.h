@@ -28,6 +28,7 @@ enum class StreamKind : uint32_t {
   regather = 2,  ///< a new element re-gathering from patch `index`
   back = 3,      ///< the back of a filter's element receiving a shot (or re-gathering)
   near = 4,      ///< an element receiving from piece `index` of a patch it is near
+  link = 5,      ///< the hierarchical solver's link from a receiver to source `index`
 };
 
 /// The key of the stream of one tuple: the fields hashed one after another (each one mixed

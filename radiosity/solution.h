@@ -41,6 +41,11 @@ struct SolverSettings {
   /// Seed of the visibility jitter; the solve is bitwise deterministic for a given seed, thread
   /// count notwithstanding.
   uint64_t seed = 1;
+  /// Which solver: progressive refinement (radiosity/solver.h), or hierarchical radiosity with
+  /// clustering (radiosity/hierarchical_solver.h; plain diffuse scenes only, so far). Not saved
+  /// in the solution file.
+  enum class Method { progressive, hierarchical };
+  Method method = Method::progressive;
   /// Cast no shadow rays for pairs that no polygon can hide (shaft culling, geometry/shaft.h);
   /// false casts them all (the baseline the culling is measured against). Not saved in the
   /// solution file.
@@ -115,6 +120,8 @@ struct SolveStats {
   /// polygon could hide and the ones one polygon hides whole (Shooter::hides_all): no rays cast
   /// for either. Counted by the solve, not saved in the solution file.
   long long visibility_pairs = 0, unhidden_pairs = 0, hidden_pairs = 0;
+  /// The hierarchical solver's links (0 for the progressive solver). Not saved.
+  long long links = 0;
 };
 
 /// A solved (or loaded) radiosity solution.

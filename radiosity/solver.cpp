@@ -16,6 +16,7 @@
 
 #include "geometry/lambert.h"
 #include "radiosity/error_bound.h"
+#include "radiosity/hierarchical_solver.h"
 #include "radiosity/mesher.h"
 #include "radiosity/progressive_solver.h"
 
@@ -420,6 +421,8 @@ std::optional<Scene> carried_scene(const Scene& scene, bool glass) {
 Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress) {
   settings.validate();
+  if (settings.method == SolverSettings::Method::hierarchical)
+    return solve_hierarchical(caster, settings, progress);
   const auto start = std::chrono::steady_clock::now();
   // A roughened pane is carried as the filter of its glossy transmittance: at the scale of
   // patches its blur matters little, and a pane in front of a lamp would otherwise take most of

@@ -11,9 +11,10 @@ namespace rad {
 /// Reported while the mesh is made, and after every shot.
 struct SolveProgress {
   /// What the solve is doing: cutting and splitting the polygons into patches and elements,
-  /// finding the elements buried inside closed objects (for both, `stage_done` is the fraction
-  /// done), or shooting (the fields below).
-  enum class Stage { meshing, burying, shooting };
+  /// finding the elements buried inside closed objects, linking receivers to sources (the
+  /// hierarchical solver; for these three, `stage_done` is the fraction done), or shooting
+  /// (the fields below; the hierarchical solver's sweeps count as shots).
+  enum class Stage { meshing, burying, linking, shooting };
   Stage stage = Stage::shooting;
   double stage_done = 0;
   int shots = 0;

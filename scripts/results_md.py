@@ -216,6 +216,14 @@ def main():
         "earlier, medians over the pairs.",
     ], lambda line: True, lambda lines: [line for line in lines if line.startswith("The whole")] +
        ["", "![solve time against polygons](images/building-solve.png)", ""])
+    bench_tables(out, "bench/results/hierarchical_solve.md",
+        "## The hierarchical solver against the progressive one", [
+        "From [`bench/results/hierarchical_solve.md`](../bench/results/hierarchical_solve.md)",
+        "(`bash bench/hierarchical_solve.sh`): both solvers in the same run, on the procedural",
+        "building (coarse settings) and on the Cornell box (default settings, the local pass at its",
+        "accuracy points against the path-traced reference). The hierarchical solver does not",
+        "refine its elements yet: [algorithms.md](algorithms.md#the-hierarchical-solver-first-version).",
+    ], [], [("solve time against polygons, both solvers", "images/hierarchical-solve.png")])
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")
