@@ -99,9 +99,8 @@ PY
   echo "ledger's share of the emitted power that no element took in: the building is closed, so"
   echo "it is what each solver's approximations lose. The Cornell box's errors are the exact local"
   echo "pass's (\`radiosity probe\`, tolerance 0) at its 36 accuracy points, per point and"
-  echo "channel, against the path-traced reference; the hierarchical solver does not refine its"
-  echo "elements yet, which is most of its error there (docs/algorithms.md, \"The hierarchical"
-  echo "solver\")."
+  echo "channel, against the path-traced reference (what limits the hierarchical solver there:"
+  echo "docs/algorithms.md, \"The hierarchical solver\")."
   provenance geometry scene radiosity cli data/building data/cornell-box
   echo
   echo "$table"

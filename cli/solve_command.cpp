@@ -154,9 +154,10 @@ void add_solve_command(CLI::App& app, Run& run) {
       "leaves no partial file.\n"
       "--solver hierarchical: hierarchical radiosity with clustering instead (links between\n"
       "each patch and whole clusters of patches far from it, Jacobi sweeps until the last\n"
-      "sweep's change is below --unshot of the emitted power); plain diffuse scenes, no\n"
-      "adaptive refinement yet; --refine-threshold and --refine-passes do not apply. Against\n"
-      "the progressive solver: bench/results/hierarchical_solve.md.");
+      "sweep's change is below --unshot of the emitted power, --max-shots counting sweeps;\n"
+      "then --refine-passes passes of splitting by --refine-threshold and sweeping again);\n"
+      "plain diffuse scenes. Against the progressive solver:\n"
+      "bench/results/hierarchical_solve.md.");
   sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
   sub->add_option("--patch-size", s.patch_size,

@@ -4,7 +4,7 @@
 /// clusters of patches as sources far away (Smits, Arvo and Greenberg 1994; Sillion 1995), and
 /// Jacobi gathering over the links. docs/algorithms.md, "The hierarchical solver", has the
 /// method and what it approximates; the first version, below, is the progressive solver's
-/// peer on plain diffuse scenes and not yet its replacement (SolverSettings::solver).
+/// peer on plain diffuse scenes and not yet its replacement (SolverSettings::method).
 #include <functional>
 #include <string>
 
@@ -16,8 +16,8 @@ namespace rad {
 /// hierarchical solver does not carry), or empty when it can.
 std::string hierarchical_unsupported(const Scene& scene);
 
-/// Meshes the caster's scene as solve() does (the same patches and elements; no adaptive
-/// refinement yet) and solves it hierarchically:
+/// Meshes the caster's scene as solve() does (the same patches and elements) and solves it
+/// hierarchically:
 ///   1. a cluster tree over the patches (median splits of their centroids);
 ///   2. every patch P links to the sources it sees, walked down from the root: a cluster C
 ///      farther from P than its size over kOpening (and seen all or none by a few rays) is
@@ -26,7 +26,11 @@ std::string hierarchical_unsupported(const Scene& scene);
 ///      factor and the shadow rays of solve()); a patch nearer than that links each of P's
 ///      elements to each of its own;
 ///   3. Jacobi sweeps B = E + rho H(B) until the power of the last sweep's change falls below
-///      settings.unshot_fraction of the emitted power.
+///      settings.unshot_fraction of the emitted power;
+///   4. up to settings.refine_passes times, split the leaves whose radiosity misses their mesh
+///      neighbours' plane, or near a contact a corner's own gather, by more than the
+///      refinement limit (radiosity/refinement_limit.h); a split patch's links are handed down
+///      to its leaves; sweep again.
 /// Bitwise deterministic for any thread count. Throws Error when hierarchical_unsupported()
 /// names something.
 Solution solve_hierarchical(const RayCaster& caster, const SolverSettings& settings,

@@ -15,6 +15,7 @@
 #include "radiosity/near_field.h"
 #include "radiosity/random_stream.h"
 #include "radiosity/receiver_culling.h"
+#include "radiosity/refinement_limit.h"
 #include "radiosity/shooter.h"
 #include "radiosity/solution.h"
 #include "radiosity/solver.h"
@@ -99,27 +100,10 @@ class ProgressiveSolver {
   void find_buried(const std::function<void(double)>& progress);
 
   bool refinement_enabled() const { return settings_.refine_threshold > 0 && reference_ > 0; }
-  /// Errors are seen relative to the local brightness: the limit follows the local radiosity,
-  /// clamped to [floor, 1] x B_ref so that dark regions are resolved but black ones are not
-  /// chased forever. The floor is dark_floor in general: a dark element is seen at a small
-  /// solid angle from the brighter points around it, and its error is small beside theirs. Near
-  /// a contact or a concave edge (`near_contact`) it is contact_dark_floor: a point of the local
-  /// pass beside the edge sees the elements next to it at half its hemisphere, and in a contact
-  /// shadow it is as dark as they are, so what it tolerates is relative to that darkness, not
-  /// to the scene's mean.
+  /// The refinement limit at an element (radiosity/refinement_limit.h).
   double limit(double local_radiosity, bool near_contact) const {
-    const double floor = near_contact ? contact_dark_floor : dark_floor;
-    return settings_.refine_threshold * std::clamp(local_radiosity, floor * reference_, reference_);
+    return refinement_limit(settings_.refine_threshold, reference_, local_radiosity, near_contact);
   }
-  static constexpr double dark_floor = 0.1;
-  /// Measured on the Cornell box (bench/results/global_accuracy.md, point 10: the floor 2 mm
-  /// from the short block's front, in its umbra, where blue is a twentieth of red): path-traced,
-  /// the blue radiosity of the block's face falls by 40% over its lowest 3 mm and the floor's
-  /// by a quarter over its first 4 mm. Held to 0.1 x B_ref, the elements there stayed 4.7 mm
-  /// and constant across that fall, the lowest rows too bright on both sides (+2.6% at the
-  /// point in blue); at 0.02 they follow it (+1.4%), for 5% more elements. 0.05 reaches +1.9%;
-  /// 0.01 goes no further than 0.02.
-  static constexpr double contact_dark_floor = 0.02;
   /// Not buried and longer than the smallest element (the test runs for every candidate of
   /// every shot, so the length is taken once, when the element is made).
   bool splittable(int e) const { return !buried_[e] && long_enough_[e]; }

@@ -221,8 +221,8 @@ def main():
         "From [`bench/results/hierarchical_solve.md`](../bench/results/hierarchical_solve.md)",
         "(`bash bench/hierarchical_solve.sh`): both solvers in the same run, on the procedural",
         "building (coarse settings) and on the Cornell box (default settings, the local pass at its",
-        "accuracy points against the path-traced reference). The hierarchical solver does not",
-        "refine its elements yet: [algorithms.md](algorithms.md#the-hierarchical-solver-first-version).",
+        "accuracy points against the path-traced reference). What limits the hierarchical solver:",
+        "[algorithms.md](algorithms.md#the-hierarchical-solver-first-version).",
     ], [], [("solve time against polygons, both solvers", "images/hierarchical-solve.png")])
     w("## Stability")
     w("")

@@ -1,0 +1,474 @@
+#pragma once
+/// The hierarchical solver's state and steps, shared by its two source files:
+/// hierarchical_solver.cpp (the links, the sweeps, the result) and hierarchical_refinement.cpp
+/// (splitting leaves). Internal to radiosity/: callers use solve_hierarchical()
+/// (radiosity/hierarchical_solver.h).
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "radiosity/error_bound.h"
+#include "radiosity/hierarchical_solver.h"
+#include "radiosity/mesher.h"
+#include "radiosity/patch_clusters.h"
+#include "radiosity/patch_mesh.h"
+#include "radiosity/random_stream.h"
+#include "radiosity/refinement_limit.h"
+#include "radiosity/shooter.h"
+#include "scene/error.h"
+
+namespace rad {
+
+/// A source is linked whole when its size is below kOpening times its distance from the
+/// receiver (the opening angle of Barnes and Hut's tree codes): the 1 / r^2 and the cosines
+/// then change by some per cent across it. Measured on the Cornell box without refinement
+/// (docs/algorithms.md): RMS error at the accuracy points 6.6% at 0.5, 4.8% at 0.25, 3.9% at
+/// 0.1 (the progressive solver's, unrefined: 3.9%), for 0.7, 2.0 and 3.7 million links.
+inline constexpr double kOpening = 0.25;
+/// H += factor (x) B(source): a patch (patch links) or an element as the source (element
+/// links: element `source`, or patch -1 - source where a patch's links were handed down).
+struct Link {
+  int source;
+  Rgb factor;
+};
+/// H += sum over bins of weight_b x flux_b(cluster).
+struct ClusterLink {
+  int cluster;
+  std::array<float, kBins> weight;
+};
+
+class HierarchicalSolver {
+ public:
+  HierarchicalSolver(const RayCaster& caster, const SolverSettings& settings,
+                     const std::function<void(const SolveProgress&)>& progress)
+      : caster_(caster),
+        scene_(caster.scene()),
+        settings_(settings),
+        diagonal_(scene_.bounds().diagonal()),
+        epsilon_(1e-5 * diagonal_),
+        in_plane_(scene_.tolerance().in_plane),
+        rays_(caster, settings, epsilon_),
+        progress_(progress) {
+    solution_.settings = settings;
+    solution_.patches = make_patches(scene_, settings.patch_size * diagonal_, [&](double done) {
+      report(SolveProgress::Stage::meshing, done);
+    });
+    solution_.elements = make_elements(solution_.patches, settings.element_levels);
+    const size_t patch_count = solution_.patches.size();
+    centroid_.resize(patch_count);
+    radius_.resize(patch_count);
+    for (size_t p = 0; p < patch_count; ++p) {
+      double area;
+      element_geometry(solution_.patches[p].corners, &area, &centroid_[p]);
+      radius_[p] = bounding_sphere(solution_.patches[p].corners, centroid_[p]).radius;
+    }
+    find_leaves();
+    clusters_.emplace(solution_.patches, centroid_);
+  }
+
+  void link() {
+    const size_t count = solution_.patches.size();
+    patch_links_.resize(count);
+    cluster_links_.resize(count);
+    element_links_.resize(solution_.elements.size());
+    const size_t part = std::max<size_t>(256, count / 100);
+    for (size_t begin = 0; begin < count; begin += part) {
+      report(SolveProgress::Stage::linking, static_cast<double>(begin) / count);
+      tbb::parallel_for(begin, std::min(count, begin + part),
+                        [&](size_t p) { link_patch(static_cast<int>(p)); });
+    }
+    for (size_t p = 0; p < count; ++p) {
+      links_ += static_cast<long long>(patch_links_[p].size() + cluster_links_[p].size());
+    }
+    for (const auto& l : element_links_) links_ += static_cast<long long>(l.size());
+    // The links' row sums: the gather of a uniform radiosity of 1. The exact form factors of a
+    // point sum to at most 1 (to the hemisphere); the clusters' and the centroids' estimates
+    // can pass it, and a row that does is scaled back to 1, so that no element takes in more
+    // than all it sees (the sweeps converge, and the bound below holds with sigma < 1).
+    radiosity_.assign(solution_.elements.size(), Rgb::Ones());
+    pull();
+    patch_row_.resize(count);
+    cluster_row_.resize(count);
+    for (size_t p = 0; p < count; ++p) {
+      patch_row_[p] = gather_at_patch(static_cast<int>(p));
+      cluster_row_[p] = patch_row_[p];
+      for (const Link& l : patch_links_[p]) cluster_row_[p] -= l.factor;
+    }
+    row_scale_.assign(solution_.elements.size(), 1.0);
+    for (const int e : leaves_) row_scale_[e] = scale_of(e);
+    // The initial state: every live leaf radiates its emission.
+    for (const int e : leaves_) radiosity_[e] = emission(e);
+    for (const int e : leaves_) emitted_ += radiosity_[e] * solution_.elements[e].area;
+  }
+
+  /// Leaf e's row sum (its patch's links' and its own, at a uniform radiosity of 1), and the
+  /// scale that brings it down to 1 where it passes 1.
+  Rgb row_sum(int e) const {
+    Rgb h = patch_row_[solution_.elements[e].patch];
+    for (const Link& l : element_links_[e]) h += l.factor;
+    return h;
+  }
+  double scale_of(int e) const {
+    const double sum = row_sum(e).maxCoeff();
+    return sum > 1 ? 1 / sum : 1.0;
+  }
+
+  /// Splits the leaves whose radiosity misses the plane through their mesh neighbours' by
+  /// more than the refinement limit (the progressive solver's refine_by_neighbours: Gouraud
+  /// display and the local pass take a plane well, not what it misses: shadow edges, corners).
+  /// Each new leaf takes its parent's radiosity and patch links, and measures its own links
+  /// to the sources its parent linked to element by element. Returns the number split.
+  int refine();
+
+  void iterate() {
+    std::vector<Element>& elements = solution_.elements;
+    const double emitted = emitted_.sum();
+    converged_ = false;
+    std::vector<Rgb> next(elements.size(), Rgb::Zero()), irradiance(elements.size(), Rgb::Zero());
+    std::vector<Rgb> patch_irradiance(solution_.patches.size(), Rgb::Zero());
+    for (int sweep = 0; sweep < std::max(1, settings_.max_shots); ++sweep) {
+      pull();
+      tbb::parallel_for(size_t(0), solution_.patches.size(), [&](size_t p) {
+        patch_irradiance[p] = gather_at_patch(static_cast<int>(p));
+      });
+      tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) {
+        const int e = leaves_[k];
+        Rgb h = patch_irradiance[elements[e].patch];
+        for (const Link& l : element_links_[e])
+          h += l.factor.cwiseProduct(source_radiosity(l.source));
+        h *= row_scale_[e];
+        irradiance[e] = h;
+        next[e] = emission(e) + reflectance(e).cwiseProduct(h);
+      });
+      // The change, in index order (the same sum for any thread count).
+      change_ = Rgb::Zero();
+      largest_change_ = Rgb::Zero();
+      for (const int e : leaves_) {
+        const Rgb d = next[e] - radiosity_[e];
+        change_ += d * elements[e].area;
+        largest_change_ = largest_change_.cwiseMax(d.cwiseAbs());
+        radiosity_[e] = next[e];
+      }
+      ++sweeps_;
+      const double fraction = emitted > 0 ? change_.cwiseAbs().sum() / emitted : 0;
+      if (progress_) {
+        SolveProgress now;
+        now.stage = SolveProgress::Stage::shooting;
+        now.shots = sweeps_;
+        now.unshot_fraction = fraction;
+        now.target_fraction = settings_.unshot_fraction;
+        now.elements = static_cast<int>(leaves_.size());
+        progress_(now);
+      }
+      if (fraction < settings_.unshot_fraction) {
+        converged_ = true;
+        break;
+      }
+    }
+    irradiance_ = std::move(irradiance);
+  }
+
+  Solution finish(double seconds) {
+    std::vector<Element>& elements = solution_.elements;
+    SolveStats& stats = solution_.stats;
+    for (Patch& p : solution_.patches) p.radiosity = Rgb::Zero();
+    int leaf_count = 0;
+    for (size_t e = 0; e < elements.size(); ++e) {
+      if (!elements[e].is_leaf()) continue;
+      ++leaf_count;
+      elements[e].radiosity = emission(static_cast<int>(e));  // buried: as solve() leaves them
+    }
+    Rgb absorbed = Rgb::Zero();
+    for (const int e : leaves_) {
+      Element& el = elements[e];
+      el.radiosity = radiosity_[e];
+      el.irradiance = irradiance_.empty() ? Rgb::Zero() : irradiance_[e];
+      absorbed += (Rgb::Ones() - reflectance(e)).cwiseProduct(el.irradiance) * el.area;
+    }
+    for (const Element& el : elements) {
+      if (!el.is_leaf()) continue;
+      Patch& p = solution_.patches[el.patch];
+      p.radiosity += el.radiosity * (el.area / p.area);
+    }
+    for (Patch& p : solution_.patches) p.shot = p.radiosity;
+    stats.shots = sweeps_;
+    stats.refined = refined_;
+    stats.patches = static_cast<int>(solution_.patches.size());
+    stats.elements = leaf_count;
+    stats.seconds = seconds;
+    stats.emitted = emitted_;
+    stats.absorbed = absorbed;
+    stats.unshot = change_;
+    stats.escaped = emitted_ - absorbed - change_;
+    stats.unshot_fraction = emitted_.sum() > 0 ? change_.cwiseAbs().sum() / emitted_.sum() : 0;
+    stats.converged = converged_;
+    stats.links = links_;
+    const Shooter::PairCounts counted = rays_.counts();
+    stats.visibility_pairs = counted.pairs;
+    stats.unhidden_pairs = counted.unhidden;
+    stats.hidden_pairs = counted.hidden;
+    stats.error_bound = error_bound();
+    return std::move(solution_);
+  }
+
+ private:
+  void report(SolveProgress::Stage stage, double done) const {
+    if (!progress_) return;
+    SolveProgress r;
+    r.stage = stage;
+    r.stage_done = done;
+    progress_(r);
+  }
+  const Material& material(int polygon) const {
+    return scene_.materials[scene_.polygons[polygon].material];
+  }
+  Rgb emission(int e) const { return material(solution_.elements[e].polygon).emission; }
+  Rgb reflectance(int e) const { return material(solution_.elements[e].polygon).reflectance; }
+
+  /// The live leaves (not buried inside a closed object, as solve() finds them) of each patch,
+  /// and each patch's live area.
+  void find_leaves() {
+    const std::vector<Element>& elements = solution_.elements;
+    std::vector<char>& buried = buried_;
+    buried.assign(elements.size(), 0);
+    tbb::parallel_for(size_t(0), elements.size(), [&](size_t e) {
+      const Element& el = elements[e];
+      if (el.is_leaf())
+        buried[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
+    });
+    patch_leaves_.resize(solution_.patches.size());
+    live_area_.assign(solution_.patches.size(), 0.0);
+    for (size_t e = 0; e < elements.size(); ++e) {
+      if (!elements[e].is_leaf() || buried[e]) continue;
+      leaves_.push_back(static_cast<int>(e));
+      patch_leaves_[elements[e].patch].push_back(static_cast<int>(e));
+      live_area_[elements[e].patch] += elements[e].area;
+    }
+  }
+
+  /// Each patch's radiosity (the area mean of its live leaves), and each cluster's flux per bin
+  /// (sum over its patches of B A_live max(0, +-n_i)), children before parents.
+  void pull() {
+    // A split element a link names (made before the split) shows the area mean of its live
+    // children; children come after their parents in the list.
+    const std::vector<Element>& elements = solution_.elements;
+    live_below_.assign(elements.size(), 0.0);
+    for (size_t e = elements.size(); e-- > 0;) {
+      const Element& el = elements[e];
+      if (el.is_leaf()) {
+        live_below_[e] = buried_[e] ? 0.0 : el.area;
+        continue;
+      }
+      Rgb sum = Rgb::Zero();
+      for (int c = el.first_child; c < el.first_child + 4; ++c) {
+        live_below_[e] += live_below_[c];
+        sum += radiosity_[c] * live_below_[c];
+      }
+      radiosity_[e] = live_below_[e] > 0 ? Rgb(sum / live_below_[e]) : Rgb::Zero();
+    }
+    patch_radiosity_.assign(solution_.patches.size(), Rgb::Zero());
+    for (size_t p = 0; p < patch_leaves_.size(); ++p) {
+      if (!(live_area_[p] > 0)) continue;
+      Rgb sum = Rgb::Zero();
+      for (const int e : patch_leaves_[p]) sum += radiosity_[e] * solution_.elements[e].area;
+      patch_radiosity_[p] = sum / live_area_[p];
+    }
+    clusters_->pull(patch_radiosity_, live_area_);
+  }
+
+  Rgb gather_at_patch(int p) const {
+    Rgb h = Rgb::Zero();
+    for (const Link& l : patch_links_[p]) h += l.factor.cwiseProduct(patch_radiosity_[l.source]);
+    for (const ClusterLink& l : cluster_links_[p]) {
+      for (int b = 0; b < kBins; ++b)
+        h += static_cast<double>(l.weight[b]) * clusters_->flux(l.cluster)[b];
+    }
+    return h;
+  }
+
+  /// What leaf e's own links (its sources near it) give at point x of it: x its centroid
+  /// (`corner` -1: the links' stored factors) or its corner `corner` (measured now).
+  Rgb own_gather(int e, const Vec3& x, int corner) const;
+
+  /// An element link's source: element s, or patch -1 - s (a patch link handed down).
+  const Rgb& source_radiosity(int s) const {
+    return s >= 0 ? radiosity_[s] : patch_radiosity_[-1 - s];
+  }
+  Patch source_patch(int s) const { return s >= 0 ? as_patch(s) : solution_.patches[-1 - s]; }
+
+  /// Element s as a source of its own (its patch's plane).
+  Patch as_patch(int s) const {
+    const Element& piece = solution_.elements[s];
+    Patch part;
+    part.polygon = piece.polygon;
+    part.corners = piece.corners;
+    part.normal = solution_.patches[piece.patch].normal;
+    part.area = piece.area;
+    return part;
+  }
+
+  /// The height above patch p's plane of the farthest corner of `box`.
+  double highest_above(const Eigen::AlignedBox3d& box, int p) const {
+    const Patch& s = solution_.patches[p];
+    double h = -s.normal.dot(s.corners[0]);
+    for (int i = 0; i < 3; ++i)
+      h += std::max(s.normal[i] * box.min()[i], s.normal[i] * box.max()[i]);
+    return h;
+  }
+  /// Some corner of patch a in front of patch b's plane (beyond the scene's tolerance).
+  bool in_front(int a, int b) const {
+    const Patch& pa = solution_.patches[a];
+    const Patch& pb = solution_.patches[b];
+    return std::any_of(pa.corners.begin(), pa.corners.end(),
+                       [&](const Vec3& c) { return pb.normal.dot(c - pb.corners[0]) > in_plane_; });
+  }
+
+  void link_patch(int p) {
+    if (patch_leaves_[p].empty() || clusters_->empty()) return;
+    const Vec3& x = centroid_[p];
+    std::vector<int> stack{0};
+    while (!stack.empty()) {
+      const int index = stack.back();
+      stack.pop_back();
+      const Cluster& c = (*clusters_)[index];
+      if (!(highest_above(c.box, p) > in_plane_)) continue;
+      const double distance = std::sqrt(c.box.squaredExteriorDistance(x)) - radius_[p];
+      if (distance > 0 && c.size < kOpening * distance && link_cluster(p, index)) continue;
+      if (c.left >= 0) {
+        stack.push_back(c.left + 1);
+        stack.push_back(c.left);
+        continue;
+      }
+      for (int k = c.first; k < c.first + c.count; ++k) link_patches(p, clusters_->patch(k));
+    }
+  }
+
+  /// Links patch p to cluster `index` whole when a few shadow rays agree (all pass or all are
+  /// blocked); false when they disagree and the cluster is to be opened.
+  bool link_cluster(int p, int index) {
+    const Cluster& c = (*clusters_)[index];
+    const Vec3& x = centroid_[p];
+    const Vec3 n = solution_.patches[p].normal;
+    Vec3 w = x - c.centre;
+    const double r = w.norm();
+    if (!(r > 0)) return false;
+    w /= r;
+    // The picks of the bins turned to the receiver, the bin it faces most first, in turn.
+    const std::array<double, kBins> toward = bin_weights(w);
+    std::array<int, kBins> bins_order{0, 1, 2, 3, 4, 5};
+    std::stable_sort(bins_order.begin(), bins_order.end(),
+                     [&](int a, int b) { return toward[a] > toward[b]; });
+    std::array<int, kClusterRays> samples;
+    int rays = 0;
+    for (int k = 0; k < kClusterRays && rays < kClusterRays; ++k) {
+      for (const int b : bins_order) {
+        if (!(toward[b] > 0) || rays == kClusterRays) continue;
+        const int q = c.turned[b][k];
+        if (q >= 0 &&
+            std::find(samples.begin(), samples.begin() + rays, q) == samples.begin() + rays)
+          samples[rays++] = q;
+      }
+    }
+    if (rays == 0) return true;  // no patch of it is turned to the receiver: no link
+    int passed = 0;
+    for (int k = 0; k < rays; ++k) {
+      const int q = samples[k];
+      const Vec3 d = centroid_[q] - x;
+      const double length = d.norm();
+      if (!(length > 2 * epsilon_)) {
+        ++passed;
+        continue;
+      }
+      passed += !caster_.occluded({x, d / length}, epsilon_, length - epsilon_);
+    }
+    if (passed != 0 && passed != rays) return false;
+    const double cos_receiver = -n.dot(w);
+    if (passed == 0 || !(cos_receiver > 0)) return true;  // nothing arrives: no link
+    const std::array<double, kBins> bins = bin_weights(w);
+    ClusterLink link{index, {}};
+    const double scale = cos_receiver / (std::numbers::pi * r * r);
+    for (int b = 0; b < kBins; ++b) link.weight[b] = static_cast<float>(bins[b] * scale);
+    cluster_links_[p].push_back(link);
+    return true;
+  }
+
+  /// Links patch p to patch q: at p's centroid when both are small beside their distance, else
+  /// each live leaf of p to each of q's.
+  void link_patches(int p, int q) {
+    const Patch& rp = solution_.patches[p];
+    const Patch& sq = solution_.patches[q];
+    if (p == q || rp.polygon == sq.polygon) return;  // a planar polygon does not see itself
+    if (!in_front(p, q) || !in_front(q, p)) return;
+    const double distance = (centroid_[q] - centroid_[p]).norm() - radius_[p] - radius_[q];
+    if (distance > 0 && 2 * std::max(radius_[p], radius_[q]) < kOpening * distance) {
+      const Rgb f = rays_.visible_form_factor(centroid_[p], rp.normal, rp.polygon, sq,
+                                              stream_key(0, p, StreamKind::link, q));
+      if (f != Rgb::Zero()) patch_links_[p].push_back({q, f});
+      return;
+    }
+    for (const int e : patch_leaves_[p]) {
+      const Element& el = solution_.elements[e];
+      for (const int s : patch_leaves_[q]) {
+        const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon, as_patch(s),
+                                                stream_key(0, e, StreamKind::link, s));
+        if (f != Rgb::Zero()) element_links_[e].push_back({s, f});
+      }
+    }
+  }
+
+  /// The certified bound on the sweeps' own error, from the last sweep's change r: the sweeps
+  /// are Jacobi's, B' = E + R F B with F the links' (scaled) gather, so B* - B' = R F (B* - B)
+  /// and |B* - B'| <= sigma |r| / (1 - sigma), sigma = max over leaves of rho_e x its row sum
+  /// (per channel): the gather of a uniform radiosity of 1. It covers the sweeps, not what the
+  /// links approximate.
+  Rgb error_bound() const {
+    Rgb sigma = Rgb::Zero();
+    for (const int e : leaves_)
+      sigma = sigma.cwiseMax(reflectance(e).cwiseProduct(row_sum(e) * row_scale_[e]));
+    Rgb bound;
+    for (int c = 0; c < 3; ++c) {
+      bound[c] = sigma[c] < 1 ? sigma[c] * largest_change_[c] / (1 - sigma[c])
+                              : std::numeric_limits<double>::infinity();
+    }
+    return bound;
+  }
+
+  const RayCaster& caster_;
+  const Scene& scene_;
+  const SolverSettings settings_;
+  const double diagonal_;
+  const double epsilon_;
+  const double in_plane_;  ///< The scene's tolerance (a call to tolerance() bounds the scene)
+  const Shooter rays_;
+  const std::function<void(const SolveProgress&)>& progress_;
+  Solution solution_;
+  std::vector<Vec3> centroid_;
+  std::vector<double> radius_;
+  std::vector<int> leaves_;
+  std::vector<std::vector<int>> patch_leaves_;
+  std::vector<double> live_area_;
+  std::optional<PatchClusters> clusters_;
+  std::vector<std::vector<Link>> patch_links_;
+  std::vector<std::vector<ClusterLink>> cluster_links_;
+  std::vector<std::vector<Link>> element_links_;
+  std::vector<Rgb> radiosity_, patch_radiosity_, irradiance_;
+  std::vector<double> row_scale_;   ///< Per leaf: 1, or what brings its row sum down to 1
+  std::vector<Rgb> patch_row_;      ///< Per patch: its links' row sum (their gather of 1)...
+  std::vector<Rgb> cluster_row_;    ///< ...and its cluster links' part of it
+  std::vector<char> buried_;        ///< Per element: inside a closed object (leaves only)
+  std::vector<double> live_below_;  ///< pull()'s: per element, the live area of its leaves
+  Rgb emitted_ = Rgb::Zero(), change_ = Rgb::Zero(), largest_change_ = Rgb::Zero();
+  int sweeps_ = 0, refined_ = 0;
+  bool converged_ = false;
+  long long links_ = 0;
+};
+
+}  // namespace rad
