@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -23,7 +22,6 @@
 #include "radiosity/random_stream.h"
 #include "radiosity/refinement_limit.h"
 #include "radiosity/shooter.h"
-#include "scene/error.h"
 
 namespace rad {
 
