@@ -45,7 +45,8 @@ struct SolveProgress {
 /// `redirected`); a roughened pane is carried as the filter of its glossy transmittance.
 /// Refracting objects are carried as filters, unbent (SolverSettings::glass_as_filters).
 /// Parallel over receivers (TBB); bitwise deterministic for a given seed whatever the thread
-/// count. Throws Error for invalid settings.
+/// count. Throws Error for invalid settings. With settings.method hierarchical, it is
+/// solve_hierarchical() instead (radiosity/hierarchical_solver.h).
 Solution solve(const RayCaster& caster, const SolverSettings& settings,
                const std::function<void(const SolveProgress&)>& progress = {});
 
