@@ -393,7 +393,10 @@ class HierarchicalSolver {
     const std::array<double, kBins> bins = bin_weights(w);
     ClusterLink link{index, {}};
     const double scale = cos_receiver / (std::numbers::pi * r * r);
-    for (int b = 0; b < kBins; ++b) link.weight[b] = static_cast<float>(bins[b] * scale);
+    for (int b = 0; b < kBins; ++b) {  // (a float holds any weight of a cluster far away)
+      link.weight[b] = static_cast<float>(
+          std::min(bins[b] * scale, static_cast<double>(std::numeric_limits<float>::max())));
+    }
     cluster_links_[p].push_back(link);
     return true;
   }

@@ -113,7 +113,8 @@ TEST(Durability, KilledWritesLeaveThePreviousFileWholeAndTheNextRunCleansUp) {
 TEST(Durability, InterruptedRunsLeaveNoTemporaryAndThePreviousFileWhole) {
   // Ctrl-C, a batch system's SIGTERM and a closed terminal's SIGHUP, at 8 times spread over a
   // render's run (some while it writes its temporary): the process dies of the signal, its
-  // temporaries gone with it, and the previous image stays whole. (A solve writes only at its
+  // temporaries gone with it, and the image stays whole (the previous one, or the new one when
+  // the signal came after the rename). (A solve writes only at its
   // end: the same code.)
   // A render that finishes before its signal (the machine busier while `full` was measured
   // than now: CI runs two tests at once) halves the later waits, so that most signals still
@@ -128,7 +129,13 @@ TEST(Durability, InterruptedRunsLeaveNoTemporaryAndThePreviousFileWhole) {
     EXPECT_EQ(temporaries(render.dir), 0) << "interrupt " << k << " left a temporary";
     if (WIFSIGNALED(status)) {
       EXPECT_EQ(WTERMSIG(status), signal) << "interrupt " << k;
-      EXPECT_EQ(slurp(render.image), render.before) << "interrupt " << k << ": image changed";
+      // Whole, the previous image or (a signal after the rename, while the process let go of
+      // its 2048 x 2048 buffers: measured once in a fresh clone's run) the finished one; never
+      // a part of either.
+      const std::string now = slurp(render.image);
+      EXPECT_TRUE(now == render.before || now == render.after)
+          << "interrupt " << k << ": a partial image";
+      if (now == render.after) render.small();
       ++interrupted;
     } else {  // finished before the signal
       ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
