@@ -178,8 +178,9 @@ format-check: deps
 # reference, the hierarchical solver's too; determinism across thread counts, no NaN in any
 # output): under the sanitizers they took 12 of CI's minutes, and every code path they run is
 # run by the shorter solver, probe and render tests that stay in (ConservesEnergyOnThreeScenes,
-# the furnace, the hierarchical solver's own, the CLI and durability tests). Likewise the vertex tracer's and the occlusion culling's agreement checks over whole
-# solved scenes (7 minutes of CPU under the sanitizers; CI had reached 59 of its 60): their
+# the furnace, the hierarchical solver's own, the CLI and durability tests). Likewise the vertex
+# tracer's and the occlusion culling's agreement checks over whole solved scenes (7 minutes of
+# CPU under the sanitizers; CI had reached 59 of its 60): their
 # random-scene and degenerate-family versions stay in. And the MPI runs (MpiRun.*, issue 21): a
 # minute and a half of separate processes under mpirun, run in the normal build; the pieces
 # that one process can check (the inputs' bundle, a job of one) stay in. make sanitize SANITIZE_EXCLUDE= runs all.
