@@ -167,6 +167,32 @@ TEST(Cli, SolveThenRenderPatches) {
   EXPECT_GT(brightest, 0.05);
 }
 
+TEST(Cli, TheHierarchicalSolverSolvesOrSaysWhyItHandsOver) {
+  // --solver hierarchical on a plain diffuse scene: links and sweeps in the summary, a file the
+  // patches' render reads. On a scene with point lights: one line saying the progressive solver
+  // takes it, and a solve all the same.
+  const fs::path dir = scratch();
+  const std::string plain = quoted(kRoot / "data/light-over-floor/scene.json");
+  Result r = run("solve " + plain + " --solver hierarchical --patch-size 0.2 -o '" +
+                 (dir / "h.vtp").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("sweeps over"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not the links' approximations"), std::string::npos) << r.err;
+  r = run("render " + plain + " --method patches --solution '" + (dir / "h.vtp").string() +
+          "' --width 16 --height 16 -o '" + (dir / "h.exr").string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string lit = quoted(kRoot / "data/glossy-ring/scene.json");
+  r = run("solve " + lit + " --solver hierarchical --patch-size 0.3 --refine-threshold 0 -o '" +
+          (dir / "g.vtp").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("does not carry point lights yet; solving progressively"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(" shots, unshot "), std::string::npos) << r.err;
+  EXPECT_EQ(
+      run("solve " + plain + " --solver nonsense -o '" + (dir / "x.vtp").string() + "'").exit_code,
+      2);
+}
+
 TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
   const fs::path dir = scratch();
   const std::string cornell = quoted(kRoot / "data/cornell-box/scene.json");
