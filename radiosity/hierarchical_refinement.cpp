@@ -73,7 +73,7 @@ int HierarchicalSolver::refine() {
     const int e = handed_leaves[k];
     const Element& el = elements[e];
     const Patch& patch = solution_.patches[el.patch];
-    for (const Link& l : patch_links_[el.patch]) {
+    for (const SourceLink& l : patch_links_[el.patch]) {
       const Rgb f = rays_.visible_form_factor(el.centroid, patch.normal, el.polygon,
                                               solution_.patches[l.source],
                                               stream_key(1, e, StreamKind::link, l.source));
@@ -83,7 +83,7 @@ int HierarchicalSolver::refine() {
   for (const int e : handed_leaves) links_ += static_cast<long long>(element_links_[e].size());
   for (const int p : handed) {
     links_ -= static_cast<long long>(patch_links_[p].size());
-    std::vector<Link>().swap(patch_links_[p]);
+    std::vector<SourceLink>().swap(patch_links_[p]);
     patch_row_[p] = cluster_row_[p];
   }
   for (const int e : handed_leaves) row_scale_[e] = scale_of(e);
@@ -108,7 +108,7 @@ int HierarchicalSolver::refine() {
     buried_[c] = rays_.is_buried(child.centroid, patch.normal);
     radiosity_[c] = radiosity_[child.parent];
     if (buried_[c]) return;
-    for (const Link& l : element_links_[child.parent]) {
+    for (const SourceLink& l : element_links_[child.parent]) {
       const Rgb f = rays_.visible_form_factor(child.centroid, patch.normal, child.polygon,
                                               source_patch(l.source),
                                               stream_key(0, c, StreamKind::link, l.source));
@@ -118,7 +118,7 @@ int HierarchicalSolver::refine() {
   });
   for (const int e : parents) {
     links_ -= static_cast<long long>(element_links_[e].size());
-    std::vector<Link>().swap(element_links_[e]);
+    std::vector<SourceLink>().swap(element_links_[e]);
   }
   for (const int c : children) links_ += static_cast<long long>(element_links_[c].size());
   leaves_.clear();
@@ -138,7 +138,7 @@ Rgb HierarchicalSolver::own_gather(int e, const Vec3& x, int corner) const {
   const Element& el = solution_.elements[e];
   const Vec3& n = solution_.patches[el.patch].normal;
   Rgb h = Rgb::Zero();
-  for (const Link& l : element_links_[e]) {
+  for (const SourceLink& l : element_links_[e]) {
     const Rgb f =
         corner < 0 ? l.factor
                    : rays_.visible_form_factor(x, n, el.polygon, source_patch(l.source),

@@ -33,7 +33,7 @@ namespace rad {
 inline constexpr double kOpening = 0.25;
 /// H += factor (x) B(source): a patch (patch links) or an element as the source (element
 /// links: element `source`, or patch -1 - source where a patch's links were handed down).
-struct Link {
+struct SourceLink {
   int source;
   Rgb factor;
 };
@@ -98,7 +98,7 @@ class HierarchicalSolver {
     for (size_t p = 0; p < count; ++p) {
       patch_row_[p] = gather_at_patch(static_cast<int>(p));
       cluster_row_[p] = patch_row_[p];
-      for (const Link& l : patch_links_[p]) cluster_row_[p] -= l.factor;
+      for (const SourceLink& l : patch_links_[p]) cluster_row_[p] -= l.factor;
     }
     row_scale_.assign(solution_.elements.size(), 1.0);
     for (const int e : leaves_) row_scale_[e] = scale_of(e);
@@ -111,7 +111,7 @@ class HierarchicalSolver {
   /// scale that brings it down to 1 where it passes 1.
   Rgb row_sum(int e) const {
     Rgb h = patch_row_[solution_.elements[e].patch];
-    for (const Link& l : element_links_[e]) h += l.factor;
+    for (const SourceLink& l : element_links_[e]) h += l.factor;
     return h;
   }
   double scale_of(int e) const {
@@ -140,7 +140,7 @@ class HierarchicalSolver {
       tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) {
         const int e = leaves_[k];
         Rgb h = patch_irradiance[elements[e].patch];
-        for (const Link& l : element_links_[e])
+        for (const SourceLink& l : element_links_[e])
           h += l.factor.cwiseProduct(source_radiosity(l.source));
         h *= row_scale_[e];
         irradiance[e] = h;
@@ -284,7 +284,8 @@ class HierarchicalSolver {
 
   Rgb gather_at_patch(int p) const {
     Rgb h = Rgb::Zero();
-    for (const Link& l : patch_links_[p]) h += l.factor.cwiseProduct(patch_radiosity_[l.source]);
+    for (const SourceLink& l : patch_links_[p])
+      h += l.factor.cwiseProduct(patch_radiosity_[l.source]);
     for (const ClusterLink& l : cluster_links_[p]) {
       for (int b = 0; b < kBins; ++b)
         h += static_cast<double>(l.weight[b]) * clusters_->flux(l.cluster)[b];
@@ -336,7 +337,7 @@ class HierarchicalSolver {
     while (!stack.empty()) {
       const int index = stack.back();
       stack.pop_back();
-      const Cluster& c = (*clusters_)[index];
+      const PatchCluster& c = (*clusters_)[index];
       if (!(highest_above(c.box, p) > in_plane_)) continue;
       const double distance = std::sqrt(c.box.squaredExteriorDistance(x)) - radius_[p];
       if (distance > 0 && c.size < kOpening * distance && link_cluster(p, index)) continue;
@@ -352,7 +353,7 @@ class HierarchicalSolver {
   /// Links patch p to cluster `index` whole when a few shadow rays agree (all pass or all are
   /// blocked); false when they disagree and the cluster is to be opened.
   bool link_cluster(int p, int index) {
-    const Cluster& c = (*clusters_)[index];
+    const PatchCluster& c = (*clusters_)[index];
     const Vec3& x = centroid_[p];
     const Vec3 n = solution_.patches[p].normal;
     Vec3 w = x - c.centre;
@@ -457,9 +458,9 @@ class HierarchicalSolver {
   std::vector<std::vector<int>> patch_leaves_;
   std::vector<double> live_area_;
   std::optional<PatchClusters> clusters_;
-  std::vector<std::vector<Link>> patch_links_;
+  std::vector<std::vector<SourceLink>> patch_links_;
   std::vector<std::vector<ClusterLink>> cluster_links_;
-  std::vector<std::vector<Link>> element_links_;
+  std::vector<std::vector<SourceLink>> element_links_;
   std::vector<Rgb> radiosity_, patch_radiosity_, irradiance_;
   std::vector<double> row_scale_;   ///< Per leaf: 1, or what brings its row sum down to 1
   std::vector<Rgb> patch_row_;      ///< Per patch: its links' row sum (their gather of 1)...

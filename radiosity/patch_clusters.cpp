@@ -20,14 +20,14 @@ PatchClusters::PatchClusters(const std::vector<Patch>& patches, const std::vecto
   if (order_.empty()) return;
   clusters_.emplace_back();
   build(0, 0, static_cast<int>(order_.size()));
-  flux_.assign(clusters_.size(), Bins{});
+  flux_.assign(clusters_.size(), FluxBins{});
 }
 
 void PatchClusters::pull(const std::vector<Rgb>& patch_radiosity,
                          const std::vector<double>& live_area) {
   for (size_t i = clusters_.size(); i-- > 0;) {  // children before parents
-    const Cluster& c = clusters_[i];
-    Bins& bins = flux_[i];
+    const PatchCluster& c = clusters_[i];
+    FluxBins& bins = flux_[i];
     if (c.left >= 0) {
       for (int b = 0; b < kBins; ++b) bins[b] = flux_[c.left][b] + flux_[c.left + 1][b];
       continue;
@@ -53,7 +53,7 @@ void PatchClusters::build(int index, int first, int count) {
     weighted += p.area * centroids_[order_[i]];
     area += p.area;
   }
-  Cluster& c = clusters_[index];
+  PatchCluster& c = clusters_[index];
   c.box = box;
   c.centre = area > 0 ? Vec3(weighted / area) : box.center();
   c.size = box.diagonal().norm();
@@ -90,8 +90,8 @@ void PatchClusters::build(int index, int first, int count) {
   members.erase(std::unique(members.begin(), members.end()), members.end());
   pick_turned(index, members);
 }
-/// Cluster::turned from candidate patches (a leaf's own, or its children's picks): per bin, the
-/// kClusterRays that lean most its way, ties to the lower index.
+/// PatchCluster::turned from candidate patches (a leaf's own, or its children's picks): per bin,
+/// the kClusterRays that lean most its way, ties to the lower index.
 void PatchClusters::pick_turned(int index, std::vector<int>& members) {
   for (int b = 0; b < kBins; ++b) {
     const auto lean = [&](int q) { return bin_weights(patches_[q].normal)[b]; };

@@ -12,11 +12,11 @@
 namespace rad {
 
 /// Shadow rays from a receiver to a cluster: to the centroids of this many of its patches,
-/// each turned to the receiver (Cluster::turned).
+/// each turned to the receiver (PatchCluster::turned).
 inline constexpr int kClusterRays = 4;
 /// The six axis directions a cluster's flux is binned by: +x, -x, +y, -y, +z, -z.
 inline constexpr int kBins = 6;
-using Bins = std::array<Rgb, kBins>;
+using FluxBins = std::array<Rgb, kBins>;
 
 /// The weight of each bin toward unit direction w: max(0, +-w_i). A patch of normal n sends
 /// its flux B A into the bins by bin_weights(n); a receiver in direction w takes
@@ -24,7 +24,7 @@ using Bins = std::array<Rgb, kBins>;
 /// axes, at most sqrt(3) times too much for a tilted one (max(0, n.w) <= sum_i max(0, n_i w_i)).
 std::array<double, kBins> bin_weights(const Vec3& w);
 
-struct Cluster {
+struct PatchCluster {
   Eigen::AlignedBox3d box;
   Vec3 centre = Vec3::Zero();  ///< Area-weighted centroid of its patches
   double size = 0;             ///< Diagonal of its box
@@ -44,10 +44,10 @@ class PatchClusters {
   PatchClusters(const std::vector<Patch>& patches, const std::vector<Vec3>& centroids);
 
   bool empty() const { return clusters_.empty(); }
-  const Cluster& operator[](int i) const { return clusters_[i]; }
+  const PatchCluster& operator[](int i) const { return clusters_[i]; }
   /// The k-th patch in the tree's order (a cluster's are consecutive).
   int patch(int k) const { return order_[k]; }
-  const Bins& flux(int i) const { return flux_[i]; }
+  const FluxBins& flux(int i) const { return flux_[i]; }
 
   /// Every cluster's flux from the patches' radiosity and live areas: per bin, the sum over its
   /// patches of B A_live bin_weights(n).
@@ -61,8 +61,8 @@ class PatchClusters {
   const std::vector<Patch>& patches_;
   const std::vector<Vec3>& centroids_;
   std::vector<int> order_;
-  std::vector<Cluster> clusters_;
-  std::vector<Bins> flux_;
+  std::vector<PatchCluster> clusters_;
+  std::vector<FluxBins> flux_;
 };
 
 }  // namespace rad
