@@ -14,6 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/provenance.sh
+source bench/buildings.sh
 source bench/earlier_binary.sh
 build=${1:-build}
 base=${2:-8587d0f}
@@ -23,14 +24,8 @@ out=bench/results
 scratch=out/building-solve
 mkdir -p "$out" "$scratch"
 earlier=$(earlier_radiosity "$base")
-# The solver's settings for a scene of this size: one element per patch, no adaptive
-# refinement, stop at 2% unshot (the local pass computes the exact irradiance from it).
-coarse="--element-levels 0 --refine-threshold 0 --unshot 0.02"
-for size in "1 2 2" "1 3 3" "1 5 5" "3 5 5"; do
-  read -r storeys rx rz <<<"$size"
-  python3 data/building/make_building.py --storeys "$storeys" --rooms-x "$rx" --rooms-z "$rz" \
-    -o "$scratch/building-$storeys-$rx-$rz.json"
-done
+coarse=$building_coarse
+write_buildings "$scratch"
 table=$(python3 - "$earlier" "$build/cli/radiosity" "$pairs" "$shots" \
   "$scratch" "$coarse" "$base" <<'PY'
 import filecmp, json, os, re, statistics, subprocess, sys, time

@@ -8,16 +8,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/provenance.sh
+source bench/buildings.sh
 build=${1:-build}
 out=bench/results
 scratch=out/hierarchical-solve
 mkdir -p "$out" "$scratch" docs/images
-coarse="--element-levels 0 --refine-threshold 0 --unshot 0.02"
-for size in "1 2 2" "1 3 3" "1 5 5" "3 5 5"; do
-  read -r storeys rx rz <<<"$size"
-  python3 data/building/make_building.py --storeys "$storeys" --rooms-x "$rx" --rooms-z "$rz" \
-    -o "$scratch/building-$storeys-$rx-$rz.json"
-done
+coarse=$building_coarse
+write_buildings "$scratch"
 table=$(python3 - "$build/cli/radiosity" "$scratch" "$coarse" <<'PY'
 import json, math, os, re, subprocess, sys, time
 

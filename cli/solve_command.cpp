@@ -51,8 +51,7 @@ void run_solve(const SolveOptions& o) {
   refuse_mesh_beyond_memory(scene, o);
   const RayCaster caster(scene);
   SolverSettings settings = o.settings;
-  const bool hierarchical = settings.method == SolverSettings::Method::hierarchical;
-  if (hierarchical) {
+  if (settings.method == SolverSettings::Method::hierarchical) {
     if (const std::string missing = hierarchical_unsupported(scene); !missing.empty()) {
       std::cerr << "solve: the hierarchical solver does not carry " << missing
                 << " yet; solving progressively\n";

@@ -301,17 +301,8 @@ class HierarchicalSolver {
   const Rgb& source_radiosity(int s) const {
     return s >= 0 ? radiosity_[s] : patch_radiosity_[-1 - s];
   }
-  Patch source_patch(int s) const { return s >= 0 ? as_patch(s) : solution_.patches[-1 - s]; }
-
-  /// Element s as a source of its own (its patch's plane).
-  Patch as_patch(int s) const {
-    const Element& piece = solution_.elements[s];
-    Patch part;
-    part.polygon = piece.polygon;
-    part.corners = piece.corners;
-    part.normal = solution_.patches[piece.patch].normal;
-    part.area = piece.area;
-    return part;
+  Patch source_patch(int s) const {
+    return s >= 0 ? solution_.element_as_patch(s) : solution_.patches[-1 - s];
   }
 
   /// The height above patch p's plane of the farthest corner of `box`.
@@ -419,7 +410,8 @@ class HierarchicalSolver {
     for (const int e : patch_leaves_[p]) {
       const Element& el = solution_.elements[e];
       for (const int s : patch_leaves_[q]) {
-        const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon, as_patch(s),
+        const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon,
+                                                solution_.element_as_patch(s),
                                                 stream_key(0, e, StreamKind::link, s));
         if (f != Rgb::Zero()) element_links_[e].push_back({s, f});
       }

@@ -122,13 +122,8 @@ class ProgressiveSolver {
   /// The visible form factor from element e to a node of a patch's tree, for the near field:
   /// the node as a patch of its own, with a quarter of the shadow rays.
   Rgb piece_form_factor(int e, int node, int shot) const {
-    const Element& piece = solution_.elements[node];
-    Patch part;
-    part.polygon = piece.polygon;
-    part.corners = piece.corners;
-    part.normal = solution_.patches[piece.patch].normal;
-    part.area = piece.area;
-    return visible_ff(solution_.elements[e], part, stream_key(shot, e, StreamKind::near, node), 2);
+    return visible_ff(solution_.elements[e], solution_.element_as_patch(node),
+                      stream_key(shot, e, StreamKind::near, node), 2);
   }
   /// Whether receiver e gathers `patch` piece by piece: near it, or where its spread could
   /// make it off by more than the receiver tolerates (near_tolerance). Never a patch that is

@@ -26,4 +26,14 @@ std::vector<int> Solution::leaves() const {
   return out;
 }
 
+Patch Solution::element_as_patch(int e) const {
+  const Element& piece = elements[e];
+  Patch part;
+  part.polygon = piece.polygon;
+  part.corners = piece.corners;
+  part.normal = patches[piece.patch].normal;
+  part.area = piece.area;
+  return part;
+}
+
 }  // namespace rad

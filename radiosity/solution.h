@@ -136,6 +136,9 @@ struct Solution {
 
   /// Indices of the leaf elements, in index order.
   std::vector<int> leaves() const;
+  /// Element e as a shooter of its own: its polygon, corners and area, its patch's normal
+  /// (a piece of a patch that a receiver near it gathers from, or links to).
+  Patch element_as_patch(int e) const;
 };
 
 }  // namespace rad

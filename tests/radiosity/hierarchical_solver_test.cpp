@@ -1,6 +1,8 @@
-// The hierarchical solver (radiosity/hierarchical_solver.h): the furnace's closed form, its
-// bound against the same links solved further, the progressive solver as its peer on the
-// Cornell box, the same bytes for any thread count, and the scenes it does not carry yet.
+// The hierarchical solver (radiosity/hierarchical_solver.h): the furnace's closed form, the
+// progressive solver as its peer on the Cornell box, a far cluster against a closed form, the
+// same bytes for any thread count, and the scenes it does not carry yet. (Its bound against
+// the same links swept further: tests/radiosity/error_bound_test.cpp, with the progressive
+// solver's.)
 #include "radiosity/hierarchical_solver.h"
 
 #include <gtest/gtest.h>
@@ -60,40 +62,6 @@ TEST(HierarchicalSolver, FurnaceIsEOverOneMinusRho) {
   EXPECT_LT(mean.cwiseAbs().maxCoeff(), 1e-4);
 }
 
-TEST(HierarchicalSolver, BoundContainsTheDistanceToTheSameLinksSolvedFurther) {
-  // One face of the closed cube emits: the same links (same mesh, same seed) swept to 1e-10 of
-  // the light are B* within their own tiny bound; an early stop's distance to them must lie
-  // within its bound plus that one, and the bound must not be vacuous.
-  Scene cube = load_scene(kScenes / "closed-cube/scene.json");
-  Material lamp = cube.materials[0];
-  lamp.name = "lamp";
-  lamp.emission = Rgb(3, 2, 1);
-  cube.materials[0].emission = Rgb::Zero();
-  cube.materials[0].reflectance = Rgb(0.7, 0.5, 0.3);
-  cube.materials.push_back(lamp);
-  cube.polygons[1].material = 1;  // the top face
-  SolverSettings settings;
-  settings.patch_size = 0.25;
-  settings.refine_threshold = 0;  // the same elements at every stop
-  settings.unshot_fraction = 1e-10;
-  const Solution converged = solve_with(cube, settings, kHierarchical);
-  for (const double unshot : {0.3, 0.03, 3e-3}) {
-    settings.unshot_fraction = unshot;
-    const Solution s = solve_with(cube, settings, kHierarchical);
-    ASSERT_EQ(s.leaves(), converged.leaves());
-    Rgb distance = Rgb::Zero();
-    for (const int e : s.leaves()) {
-      distance =
-          distance.cwiseMax((s.elements[e].radiosity - converged.elements[e].radiosity).cwiseAbs());
-    }
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_LE(distance[c], s.stats.error_bound[c] + converged.stats.error_bound[c])
-          << "unshot " << unshot << ", channel " << c;
-      EXPECT_GT(distance[c], 0.01 * s.stats.error_bound[c]) << "unshot " << unshot;
-    }
-  }
-}
-
 TEST(HierarchicalSolver, AgreesWithTheProgressiveSolverOnTheCornellBox) {
   // The progressive solver is the independent peer: the same mesh (no refinement), its own
   // shots and form factors. Measured: the power absorbed agrees to 0.4% per channel and the
@@ -123,7 +91,7 @@ TEST(HierarchicalSolver, AgreesWithTheProgressiveSolverOnTheCornellBox) {
   std::cout << "Cornell box, hierarchical against progressive: absorbed ("
             << h.stats.absorbed.cwiseQuotient(p.stats.absorbed).transpose() << "), patches' RMS "
             << rms << "\n";
-  EXPECT_LT(rms, 0.04);
+  EXPECT_LT(rms, 0.03);
 }
 
 TEST(HierarchicalSolver, AFarClusterSendsTheFluxOfTheFacesTurnedToTheReceiver) {
