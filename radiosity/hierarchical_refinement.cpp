@@ -30,16 +30,17 @@ int HierarchicalSolver::refine() {
     const int e = mesh.element(f);
     const Element& el = elements[e];
     if (buried_[e] || !(longest_edge(el.corners) > smallest)) return;
+    // A corner element of a polygon can have fewer than three mesh neighbours (then no plane),
+    // and the contact test below is what it needs most.
     const std::optional<Rgb> fitted = mesh.neighbour_plane_at(solution_, f);
-    if (!fitted) return;
-    const double miss = (el.radiosity - *fitted).cwiseAbs().maxCoeff();
     const Vec3& n = solution_.patches[el.patch].normal;
     const double length = longest_edge(el.corners);
     const bool near_contact = rays_.faces_within(el.centroid, n, length);
     const auto limit = [&](const Rgb& b) {
       return refinement_limit(settings_.refine_threshold, reference, b.maxCoeff(), near_contact);
     };
-    split[f] = miss > limit(el.radiosity.cwiseMax(*fitted));
+    split[f] = fitted && (el.radiosity - *fitted).cwiseAbs().maxCoeff() >
+                             limit(el.radiosity.cwiseMax(*fitted));
     if (split[f] || !near_contact || !(length > contact_size)) return;
     // Near a contact or a concave edge the local pass sees an element from close by, at a
     // large solid angle, and takes it as uniform: split it where its own links give any
@@ -55,13 +56,16 @@ int HierarchicalSolver::refine() {
     }
   });
   std::vector<int> parents, children;
-  // A patch one of whose leaves splits hands its patch links down: each of its leaves
-  // measures them at its own centroid (an indirect shadow that its centroid's visibility
-  // smeared over it is what the split is for). Its cluster links, far, stay shared.
+  // A patch one of whose leaves splits hands its links down: each of its leaves measures its
+  // patch links at its own centroid (an indirect shadow that its centroid's visibility smeared
+  // over it is what the split is for) and weighs its cluster links there (a leaf at a junction
+  // sees the far parts of the surface it meets edge-on, its patch's centroid did not).
   std::vector<int> handed;
   for (int f = 0; f < mesh.face_count(); ++f) {
-    if (split[f] && !patch_links_[elements[mesh.element(f)].patch].empty())
-      handed.push_back(elements[mesh.element(f)].patch);
+    const int p = elements[mesh.element(f)].patch;
+    if (split[f] &&
+        !(patch_links_[p].empty() && cluster_links_[p].empty() && patch_blocked_[p].empty()))
+      handed.push_back(p);
   }
   std::sort(handed.begin(), handed.end());
   handed.erase(std::unique(handed.begin(), handed.end()), handed.end());
@@ -79,12 +83,25 @@ int HierarchicalSolver::refine() {
                                               stream_key(1, e, StreamKind::link, l.source));
       if (f != Rgb::Zero()) element_links_[e].push_back({-1 - l.source, f});
     }
+    for (const int q : patch_blocked_[el.patch]) {
+      const Rgb f =
+          rays_.visible_form_factor(el.centroid, patch.normal, el.polygon, solution_.patches[q],
+                                    stream_key(1, e, StreamKind::link, q));
+      if (f != Rgb::Zero()) {
+        element_links_[e].push_back({-1 - q, f});
+      } else {
+        element_blocked_[e].push_back(-1 - q);
+      }
+    }
+    for (const ClusterLink& l : cluster_links_[el.patch])
+      element_cluster_links_[e].push_back(
+          {l.cluster, cluster_weights(l.cluster, el.centroid, patch.normal)});
   });
-  for (const int e : handed_leaves) links_ += static_cast<long long>(element_links_[e].size());
   for (const int p : handed) {
-    links_ -= static_cast<long long>(patch_links_[p].size());
     std::vector<SourceLink>().swap(patch_links_[p]);
-    patch_row_[p] = cluster_row_[p];
+    std::vector<ClusterLink>().swap(cluster_links_[p]);
+    std::vector<int>().swap(patch_blocked_[p]);
+    patch_row_[p] = Rgb::Zero();
   }
   for (const int e : handed_leaves) row_scale_[e] = scale_of(e);
   for (int f = 0; f < mesh.face_count(); ++f) {
@@ -101,6 +118,8 @@ int HierarchicalSolver::refine() {
   radiosity_.resize(count, Rgb::Zero());
   row_scale_.resize(count, 1.0);
   element_links_.resize(count);
+  element_cluster_links_.resize(count);
+  element_blocked_.resize(count);
   tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
     const int c = children[k];
     const Element& child = elements[c];
@@ -112,15 +131,33 @@ int HierarchicalSolver::refine() {
       const Rgb f = rays_.visible_form_factor(child.centroid, patch.normal, child.polygon,
                                               source_patch(l.source),
                                               stream_key(0, c, StreamKind::link, l.source));
-      if (f != Rgb::Zero()) element_links_[c].push_back({l.source, f});
+      if (f != Rgb::Zero()) {
+        element_links_[c].push_back({l.source, f});
+      } else {
+        element_blocked_[c].push_back(l.source);
+      }
+    }
+    for (const int s : element_blocked_[child.parent]) {
+      const Rgb f =
+          rays_.visible_form_factor(child.centroid, patch.normal, child.polygon, source_patch(s),
+                                    stream_key(0, c, StreamKind::link, s));
+      if (f != Rgb::Zero()) {
+        element_links_[c].push_back({s, f});
+      } else {
+        element_blocked_[c].push_back(s);
+      }
+    }
+    for (const ClusterLink& l : element_cluster_links_[child.parent]) {
+      element_cluster_links_[c].push_back(
+          {l.cluster, cluster_weights(l.cluster, child.centroid, patch.normal)});
     }
     row_scale_[c] = scale_of(c);
   });
   for (const int e : parents) {
-    links_ -= static_cast<long long>(element_links_[e].size());
     std::vector<SourceLink>().swap(element_links_[e]);
+    std::vector<ClusterLink>().swap(element_cluster_links_[e]);
+    std::vector<int>().swap(element_blocked_[e]);
   }
-  for (const int c : children) links_ += static_cast<long long>(element_links_[c].size());
   leaves_.clear();
   for (auto& list : patch_leaves_) list.clear();
   for (size_t e = 0; e < count; ++e) {
@@ -129,7 +166,74 @@ int HierarchicalSolver::refine() {
     patch_leaves_[elements[e].patch].push_back(static_cast<int>(e));
   }
   refined_ += static_cast<int>(parents.size());
+  open_sources();
   return static_cast<int>(parents.size());
+}
+
+void HierarchicalSolver::open_sources() {
+  const std::vector<Element>& elements = solution_.elements;
+  tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) {
+    const int e = leaves_[k];
+    std::vector<SourceLink>& links = element_links_[e];
+    if (std::none_of(links.begin(), links.end(), [&](const SourceLink& l) {
+          return l.source < 0 || !elements[l.source].is_leaf();
+        }))
+      return;
+    std::vector<SourceLink> out;
+    out.reserve(links.size());
+    bool opened = false;
+    for (const SourceLink& l : links) opened |= link_down(e, l, out);
+    if (!opened) return;
+    links.swap(out);
+    row_scale_[e] = scale_of(e);
+  });
+  links_ = 0;
+  for (size_t p = 0; p < patch_links_.size(); ++p)
+    links_ += static_cast<long long>(patch_links_[p].size() + cluster_links_[p].size());
+  for (size_t e = 0; e < elements.size(); ++e)
+    links_ += static_cast<long long>(element_links_[e].size() + element_cluster_links_[e].size());
+}
+
+/// Appends to `out` leaf e's link to the source of `link`, or, where that source has pieces
+/// (a split element's children, a patch's top-level elements) and is not small beside its
+/// distance from e's centroid (link_patches' opening test), its links to the pieces, in turn
+/// (pieces it does not see go to its blocked sources). True when it opened the source.
+bool HierarchicalSolver::link_down(int e, const SourceLink& link, std::vector<SourceLink>& out) {
+  const std::vector<Element>& elements = solution_.elements;
+  const Element& el = elements[e];
+  const int s = link.source;
+  std::vector<int> pieces;
+  if (s < 0) {
+    pieces = patch_roots_[-1 - s];
+  } else if (!elements[s].is_leaf()) {
+    for (int c = elements[s].first_child; c < elements[s].first_child + 4; ++c) pieces.push_back(c);
+  }
+  if (!pieces.empty()) {
+    const Patch source = source_patch(s);
+    Vec3 centre;
+    double area;
+    element_geometry(source.corners, &area, &centre);
+    const double radius = bounding_sphere(source.corners, centre).radius;
+    const double distance = (centre - el.centroid).norm() - radius;
+    if (distance > 0 && 2 * radius < kOpening * distance) pieces.clear();
+  }
+  if (pieces.empty()) {
+    out.push_back(link);
+    return false;
+  }
+  const Vec3& n = solution_.patches[el.patch].normal;
+  for (const int c : pieces) {
+    if (buried_[c] && elements[c].is_leaf()) continue;
+    const Rgb f =
+        rays_.visible_form_factor(el.centroid, n, el.polygon, solution_.element_as_patch(c),
+                                  stream_key(0, e, StreamKind::link, c));
+    if (f != Rgb::Zero()) {
+      link_down(e, {c, f}, out);
+    } else {
+      element_blocked_[e].push_back(c);
+    }
+  }
+  return true;
 }
 
 /// What leaf e's own links (its sources near it) give at point x of it: x its centroid
@@ -140,10 +244,20 @@ Rgb HierarchicalSolver::own_gather(int e, const Vec3& x, int corner) const {
   Rgb h = Rgb::Zero();
   for (const SourceLink& l : element_links_[e]) {
     const Rgb f =
-        corner < 0 ? l.factor
+        corner < 0 ? Rgb::Constant(l.factor)
                    : rays_.visible_form_factor(x, n, el.polygon, source_patch(l.source),
                                                stream_key(corner, e, StreamKind::corner, l.source));
     h += f.cwiseProduct(source_radiosity(l.source));
+  }
+  for (const ClusterLink& l : element_cluster_links_[e]) {
+    h += taken(corner < 0 ? l : ClusterLink{l.cluster, cluster_weights(l.cluster, x, n)},
+               clusters_->flux(l.cluster));
+  }
+  if (corner < 0) return h;  // the blocked sources give nothing at the centroid
+  for (const int s : element_blocked_[e]) {
+    const Rgb f = rays_.visible_form_factor(x, n, el.polygon, source_patch(s),
+                                            stream_key(corner, e, StreamKind::corner, s));
+    h += f.cwiseProduct(source_radiosity(s));
   }
   return h;
 }

@@ -31,11 +31,15 @@ namespace rad {
 /// (docs/algorithms.md): RMS error at the accuracy points 6.6% at 0.5, 4.8% at 0.25, 3.9% at
 /// 0.1 (the progressive solver's, unrefined: 3.9%), for 0.7, 2.0 and 3.7 million links.
 inline constexpr double kOpening = 0.25;
-/// H += factor (x) B(source): a patch (patch links) or an element as the source (element
-/// links: element `source`, or patch -1 - source where a patch's links were handed down).
+/// H += factor B(source): a patch (patch links) or an element as the source (element links:
+/// element `source`, or patch -1 - source where a patch's links were handed down). The factor
+/// is grey: the solver carries no filters and no mirrors (hierarchical_unsupported()), so a
+/// visible form factor is the same in every channel. A float holds it to 1e-7 of itself, and
+/// makes a link 8 bytes (a building's hundred million links at default settings fit in 1 GB).
 struct SourceLink {
   int source;
-  Rgb factor;
+  float factor;
+  SourceLink(int s, const Rgb& f) : source(s), factor(static_cast<float>(f[0])) {}
 };
 /// H += sum over bins of weight_b x flux_b(cluster).
 struct ClusterLink {
@@ -69,6 +73,11 @@ class HierarchicalSolver {
       radius_[p] = bounding_sphere(solution_.patches[p].corners, centroid_[p]).radius;
     }
     find_leaves();
+    patch_roots_.resize(patch_count);
+    for (size_t e = 0; e < solution_.elements.size(); ++e) {
+      if (solution_.elements[e].parent < 0)
+        patch_roots_[solution_.elements[e].patch].push_back(static_cast<int>(e));
+    }
     clusters_.emplace(solution_.patches, centroid_);
   }
 
@@ -77,6 +86,9 @@ class HierarchicalSolver {
     patch_links_.resize(count);
     cluster_links_.resize(count);
     element_links_.resize(solution_.elements.size());
+    element_cluster_links_.resize(solution_.elements.size());
+    element_blocked_.resize(solution_.elements.size());
+    patch_blocked_.resize(count);
     const size_t part = std::max<size_t>(256, count / 100);
     for (size_t begin = 0; begin < count; begin += part) {
       report(SolveProgress::Stage::linking, static_cast<double>(begin) / count);
@@ -93,12 +105,11 @@ class HierarchicalSolver {
     // than all it sees (the sweeps converge, and the bound below holds with sigma < 1).
     radiosity_.assign(solution_.elements.size(), Rgb::Ones());
     pull();
+    unit_flux_.resize(clusters_->size());
+    for (int c = 0; c < clusters_->size(); ++c) unit_flux_[c] = clusters_->flux(c);
     patch_row_.resize(count);
-    cluster_row_.resize(count);
     for (size_t p = 0; p < count; ++p) {
       patch_row_[p] = gather_at_patch(static_cast<int>(p));
-      cluster_row_[p] = patch_row_[p];
-      for (const SourceLink& l : patch_links_[p]) cluster_row_[p] -= l.factor;
     }
     row_scale_.assign(solution_.elements.size(), 1.0);
     for (const int e : leaves_) row_scale_[e] = scale_of(e);
@@ -111,7 +122,8 @@ class HierarchicalSolver {
   /// scale that brings it down to 1 where it passes 1.
   Rgb row_sum(int e) const {
     Rgb h = patch_row_[solution_.elements[e].patch];
-    for (const SourceLink& l : element_links_[e]) h += l.factor;
+    for (const SourceLink& l : element_links_[e]) h += Rgb::Constant(l.factor);
+    for (const ClusterLink& l : element_cluster_links_[e]) h += taken(l, unit_flux_[l.cluster]);
     return h;
   }
   double scale_of(int e) const {
@@ -141,7 +153,9 @@ class HierarchicalSolver {
         const int e = leaves_[k];
         Rgb h = patch_irradiance[elements[e].patch];
         for (const SourceLink& l : element_links_[e])
-          h += l.factor.cwiseProduct(source_radiosity(l.source));
+          h += static_cast<double>(l.factor) * source_radiosity(l.source);
+        for (const ClusterLink& l : element_cluster_links_[e])
+          h += taken(l, clusters_->flux(l.cluster));
         h *= row_scale_[e];
         irradiance[e] = h;
         next[e] = emission(e) + reflectance(e).cwiseProduct(h);
@@ -151,7 +165,7 @@ class HierarchicalSolver {
       largest_change_ = Rgb::Zero();
       for (const int e : leaves_) {
         const Rgb d = next[e] - radiosity_[e];
-        change_ += d * elements[e].area;
+        change_ += d.cwiseAbs() * elements[e].area;
         largest_change_ = largest_change_.cwiseMax(d.cwiseAbs());
         radiosity_[e] = next[e];
       }
@@ -166,7 +180,9 @@ class HierarchicalSolver {
         now.elements = static_cast<int>(leaves_.size());
         progress_(now);
       }
-      if (fraction < settings_.unshot_fraction) {
+      // (Not on the first sweep after a refinement: it moves the new leaves, whose area is
+      // small, and their neighbours have not taken it in yet.)
+      if (fraction < settings_.unshot_fraction && (sweep > 0 || refined_ == 0)) {
         converged_ = true;
         break;
       }
@@ -285,16 +301,47 @@ class HierarchicalSolver {
   Rgb gather_at_patch(int p) const {
     Rgb h = Rgb::Zero();
     for (const SourceLink& l : patch_links_[p])
-      h += l.factor.cwiseProduct(patch_radiosity_[l.source]);
-    for (const ClusterLink& l : cluster_links_[p]) {
-      for (int b = 0; b < kBins; ++b)
-        h += static_cast<double>(l.weight[b]) * clusters_->flux(l.cluster)[b];
-    }
+      h += static_cast<double>(l.factor) * patch_radiosity_[l.source];
+    for (const ClusterLink& l : cluster_links_[p]) h += taken(l, clusters_->flux(l.cluster));
     return h;
   }
+  /// What a cluster link takes of the cluster's flux.
+  static Rgb taken(const ClusterLink& l, const FluxBins& flux) {
+    Rgb h = Rgb::Zero();
+    for (int b = 0; b < kBins; ++b) h += static_cast<double>(l.weight[b]) * flux[b];
+    return h;
+  }
+  /// The weights, at point x of normal n, of a link to cluster `index` that its shadow rays
+  /// found open: per bin, bin_weights(w) cos / (pi r^2), w the unit vector from the cluster's
+  /// centre to x, r their distance, cos the receiver's (all 0 behind it).
+  std::array<float, kBins> cluster_weights(int index, const Vec3& x, const Vec3& n) const {
+    std::array<float, kBins> weight{};
+    Vec3 w = x - (*clusters_)[index].centre;
+    const double r = w.norm();
+    if (!(r > 0)) return weight;
+    w /= r;
+    const double cos_receiver = -n.dot(w);
+    if (!(cos_receiver > 0)) return weight;
+    const std::array<double, kBins> bins = bin_weights(w);
+    const double scale = cos_receiver / (std::numbers::pi * r * r);
+    for (int b = 0; b < kBins; ++b) {  // (a float holds any weight of a cluster far away)
+      weight[b] = static_cast<float>(
+          std::min(bins[b] * scale, static_cast<double>(std::numeric_limits<float>::max())));
+    }
+    return weight;
+  }
 
-  /// What leaf e's own links (its sources near it) give at point x of it: x its centroid
-  /// (`corner` -1: the links' stored factors) or its corner `corner` (measured now).
+  /// Relinks each leaf's element links whose source has been split since (or is a whole patch
+  /// handed down) and is not small beside its distance from the leaf, to the source's pieces:
+  /// a receiver at a junction sees the near part of the surface it meets, not its mean
+  /// (Hanrahan, Salzman and Aupperle 1991 refine the source or the receiver of a link, whichever
+  /// is larger). Then counts the links afresh.
+  void open_sources();
+  bool link_down(int e, const SourceLink& link, std::vector<SourceLink>& out);
+
+  /// What leaf e's own links (its element links and, once its patch's were handed down, its
+  /// cluster links) give at point x of it: x its centroid (`corner` -1: the links' stored
+  /// factors) or its corner `corner` (measured now).
   Rgb own_gather(int e, const Vec3& x, int corner) const;
 
   /// An element link's source: element s, or patch -1 - s (a patch link handed down).
@@ -380,15 +427,10 @@ class HierarchicalSolver {
       passed += !caster_.occluded({x, d / length}, epsilon_, length - epsilon_);
     }
     if (passed != 0 && passed != rays) return false;
-    const double cos_receiver = -n.dot(w);
-    if (passed == 0 || !(cos_receiver > 0)) return true;  // nothing arrives: no link
-    const std::array<double, kBins> bins = bin_weights(w);
-    ClusterLink link{index, {}};
-    const double scale = cos_receiver / (std::numbers::pi * r * r);
-    for (int b = 0; b < kBins; ++b) {  // (a float holds any weight of a cluster far away)
-      link.weight[b] = static_cast<float>(
-          std::min(bins[b] * scale, static_cast<double>(std::numeric_limits<float>::max())));
-    }
+    if (passed == 0) return true;  // nothing arrives: no link
+    const ClusterLink link{index, cluster_weights(index, x, n)};
+    if (std::all_of(link.weight.begin(), link.weight.end(), [](float v) { return v == 0; }))
+      return true;  // behind the receiver
     cluster_links_[p].push_back(link);
     return true;
   }
@@ -404,7 +446,11 @@ class HierarchicalSolver {
     if (distance > 0 && 2 * std::max(radius_[p], radius_[q]) < kOpening * distance) {
       const Rgb f = rays_.visible_form_factor(centroid_[p], rp.normal, rp.polygon, sq,
                                               stream_key(0, p, StreamKind::link, q));
-      if (f != Rgb::Zero()) patch_links_[p].push_back({q, f});
+      if (f != Rgb::Zero()) {
+        patch_links_[p].push_back({q, f});
+      } else if (keep_blocked_) {
+        patch_blocked_[p].push_back(q);
+      }
       return;
     }
     for (const int e : patch_leaves_[p]) {
@@ -413,7 +459,11 @@ class HierarchicalSolver {
         const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon,
                                                 solution_.element_as_patch(s),
                                                 stream_key(0, e, StreamKind::link, s));
-        if (f != Rgb::Zero()) element_links_[e].push_back({s, f});
+        if (f != Rgb::Zero()) {
+          element_links_[e].push_back({s, f});
+        } else if (keep_blocked_) {
+          element_blocked_[e].push_back(s);
+        }
       }
     }
   }
@@ -448,15 +498,24 @@ class HierarchicalSolver {
   std::vector<double> radius_;
   std::vector<int> leaves_;
   std::vector<std::vector<int>> patch_leaves_;
+  std::vector<std::vector<int>> patch_roots_;  ///< Per patch: its top-level elements
   std::vector<double> live_area_;
   std::optional<PatchClusters> clusters_;
   std::vector<std::vector<SourceLink>> patch_links_;
   std::vector<std::vector<ClusterLink>> cluster_links_;
   std::vector<std::vector<SourceLink>> element_links_;
+  /// Per element: the cluster links its patch handed down, weighed at its centroid.
+  std::vector<std::vector<ClusterLink>> element_cluster_links_;
+  std::vector<FluxBins> unit_flux_;  ///< Per cluster: its flux at a uniform radiosity of 1
+  /// Where refinement may follow: the sources (as element links name them) and the patches
+  /// that a link found hidden at its receiver's centroid. A piece of the receiver may see them
+  /// (a leaf in a penumbra whose parent's centroid was in the umbra), so each new leaf measures
+  /// them again, and the contact corner test measures them at the corners.
+  const bool keep_blocked_ = settings_.refine_threshold > 0 && settings_.refine_passes > 0;
+  std::vector<std::vector<int>> element_blocked_, patch_blocked_;
   std::vector<Rgb> radiosity_, patch_radiosity_, irradiance_;
   std::vector<double> row_scale_;   ///< Per leaf: 1, or what brings its row sum down to 1
-  std::vector<Rgb> patch_row_;      ///< Per patch: its links' row sum (their gather of 1)...
-  std::vector<Rgb> cluster_row_;    ///< ...and its cluster links' part of it
+  std::vector<Rgb> patch_row_;      ///< Per patch: its links' row sum (their gather of 1)
   std::vector<char> buried_;        ///< Per element: inside a closed object (leaves only)
   std::vector<double> live_below_;  ///< pull()'s: per element, the live area of its leaves
   Rgb emitted_ = Rgb::Zero(), change_ = Rgb::Zero(), largest_change_ = Rgb::Zero();

@@ -44,6 +44,7 @@ class PatchClusters {
   PatchClusters(const std::vector<Patch>& patches, const std::vector<Vec3>& centroids);
 
   bool empty() const { return clusters_.empty(); }
+  int size() const { return static_cast<int>(clusters_.size()); }
   const PatchCluster& operator[](int i) const { return clusters_[i]; }
   /// The k-th patch in the tree's order (a cluster's are consecutive).
   int patch(int k) const { return order_[k]; }

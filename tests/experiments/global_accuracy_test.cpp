@@ -101,25 +101,26 @@ TEST(GlobalAccuracy, TheDefaultSolveOfTheRoomIsWithinTheTargets) {
   EXPECT_LE(std::abs(r.mean), 0.003);
 }
 
-TEST(GlobalAccuracy, TheHierarchicalSolverRefinedIsNearerThanUnrefined) {
-  // The hierarchical solver's first version (radiosity/hierarchical_solver.h) against the same
-  // reference: its refinement (the neighbour plane, the contact corners, patch links handed
-  // down to split patches' leaves) must bring it nearer, and it must stay where it was
-  // measured (Cornell box: RMS 1.2%, largest 7.1% at the ceiling's corner, point 17; the room:
-  // RMS 0.8%, largest 3.9%), short of the progressive solver's targets above.
+TEST(GlobalAccuracy, TheHierarchicalSolverIsWithinTheTargetsAndItsRefinementIsWhy) {
+  // The hierarchical solver (radiosity/hierarchical_solver.h) against the same reference and
+  // the same targets as the progressive solver above. Measured: Cornell box RMS 0.39%, largest
+  // 1.87% (point 17, the ceiling's corner); the room RMS 0.25%, largest 0.80%; unrefined, the
+  // Cornell box is off by RMS 4.8%. Each piece of its refinement was taken out in turn and the
+  // Cornell box's largest error grew past the target: the corner test where no neighbour plane
+  // fits (5.0%), the sources opened near a split receiver (5.3%), the hidden sources kept for
+  // the leaves (3.3%), the second sweep after a refinement (2.1%), the cluster links handed
+  // down with the patch links (2.2%).
   SolverSettings settings;
   settings.method = SolverSettings::Method::hierarchical;
   const AccuracyReport refined = default_accuracy("cornell-box", settings);
-  settings.refine_threshold = 0;
-  const AccuracyReport unrefined = default_accuracy("cornell-box", settings);
-  EXPECT_LT(refined.rms, 0.5 * unrefined.rms);
-  EXPECT_LT(refined.largest, 0.5 * unrefined.largest);
-  EXPECT_LE(refined.rms, 0.015);
-  EXPECT_LE(refined.largest, 0.08);
-  settings.refine_threshold = SolverSettings{}.refine_threshold;
+  EXPECT_LE(refined.rms, 0.01);
+  EXPECT_LE(refined.largest, 0.02);
   const AccuracyReport room = default_accuracy("room-window", settings);
   EXPECT_LE(room.rms, 0.01);
-  EXPECT_LE(room.largest, 0.045);
+  EXPECT_LE(room.largest, 0.02);
+  settings.refine_threshold = 0;
+  const AccuracyReport unrefined = default_accuracy("cornell-box", settings);
+  EXPECT_LT(refined.rms, 0.2 * unrefined.rms);
 }
 
 }  // namespace
