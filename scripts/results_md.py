@@ -220,9 +220,10 @@ def main():
         "## The hierarchical solver against the progressive one", [
         "From [`bench/results/hierarchical_solve.md`](../bench/results/hierarchical_solve.md)",
         "(`bash bench/hierarchical_solve.sh`): both solvers in the same run, on the procedural",
-        "building (coarse settings) and on the Cornell box (default settings, the local pass at its",
-        "accuracy points against the path-traced reference). What limits the hierarchical solver:",
-        "[algorithms.md](algorithms.md#the-hierarchical-solver-first-version).",
+        "building (coarse settings, and the smallest at default settings) and on the Cornell box",
+        "(default settings, the local pass at its accuracy points against the path-traced",
+        "reference). How the hierarchical solver works and what limits it:",
+        "[algorithms.md](algorithms.md#the-hierarchical-solver).",
     ], [], [("solve time against polygons, both solvers", "images/hierarchical-solve.png")])
     w("## Stability")
     w("")
