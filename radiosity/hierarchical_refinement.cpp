@@ -77,22 +77,10 @@ int HierarchicalSolver::refine() {
     const int e = handed_leaves[k];
     const Element& el = elements[e];
     const Patch& patch = solution_.patches[el.patch];
-    for (const SourceLink& l : patch_links_[el.patch]) {
-      const Rgb f = rays_.visible_form_factor(el.centroid, patch.normal, el.polygon,
-                                              solution_.patches[l.source],
-                                              stream_key(1, e, StreamKind::link, l.source));
-      if (f != Rgb::Zero()) element_links_[e].push_back({-1 - l.source, f});
-    }
-    for (const int q : patch_blocked_[el.patch]) {
-      const Rgb f =
-          rays_.visible_form_factor(el.centroid, patch.normal, el.polygon, solution_.patches[q],
-                                    stream_key(1, e, StreamKind::link, q));
-      if (f != Rgb::Zero()) {
-        element_links_[e].push_back({-1 - q, f});
-      } else {
-        element_blocked_[e].push_back(-1 - q);
-      }
-    }
+    for (const SourceLink& l : patch_links_[el.patch])
+      link_or_hide(e, -1 - l.source, stream_key(1, e, StreamKind::link, l.source));
+    for (const int q : patch_blocked_[el.patch])
+      link_or_hide(e, -1 - q, stream_key(1, e, StreamKind::link, q));
     for (const ClusterLink& l : cluster_links_[el.patch])
       element_cluster_links_[e].push_back(
           {l.cluster, cluster_weights(l.cluster, el.centroid, patch.normal)});
@@ -127,26 +115,10 @@ int HierarchicalSolver::refine() {
     buried_[c] = rays_.is_buried(child.centroid, patch.normal);
     radiosity_[c] = radiosity_[child.parent];
     if (buried_[c]) return;
-    for (const SourceLink& l : element_links_[child.parent]) {
-      const Rgb f = rays_.visible_form_factor(child.centroid, patch.normal, child.polygon,
-                                              source_patch(l.source),
-                                              stream_key(0, c, StreamKind::link, l.source));
-      if (f != Rgb::Zero()) {
-        element_links_[c].push_back({l.source, f});
-      } else {
-        element_blocked_[c].push_back(l.source);
-      }
-    }
-    for (const int s : element_blocked_[child.parent]) {
-      const Rgb f =
-          rays_.visible_form_factor(child.centroid, patch.normal, child.polygon, source_patch(s),
-                                    stream_key(0, c, StreamKind::link, s));
-      if (f != Rgb::Zero()) {
-        element_links_[c].push_back({s, f});
-      } else {
-        element_blocked_[c].push_back(s);
-      }
-    }
+    for (const SourceLink& l : element_links_[child.parent])
+      link_or_hide(c, l.source, stream_key(0, c, StreamKind::link, l.source));
+    for (const int s : element_blocked_[child.parent])
+      link_or_hide(c, s, stream_key(0, c, StreamKind::link, s));
     for (const ClusterLink& l : element_cluster_links_[child.parent]) {
       element_cluster_links_[c].push_back(
           {l.cluster, cluster_weights(l.cluster, child.centroid, patch.normal)});
@@ -234,6 +206,19 @@ bool HierarchicalSolver::link_down(int e, const SourceLink& link, std::vector<So
     }
   }
   return true;
+}
+
+/// Measures leaf e's link to `source` (as element links name it) at e's centroid: a link where
+/// any of it is seen, else a hidden source.
+void HierarchicalSolver::link_or_hide(int e, int source, uint64_t key) {
+  const Element& el = solution_.elements[e];
+  const Rgb f = rays_.visible_form_factor(el.centroid, solution_.patches[el.patch].normal,
+                                          el.polygon, source_patch(source), key);
+  if (f != Rgb::Zero()) {
+    element_links_[e].push_back({source, f});
+  } else {
+    element_blocked_[e].push_back(source);
+  }
 }
 
 /// What leaf e's own links (its sources near it) give at point x of it: x its centroid

@@ -338,6 +338,7 @@ class HierarchicalSolver {
   /// is larger). Then counts the links afresh.
   void open_sources();
   bool link_down(int e, const SourceLink& link, std::vector<SourceLink>& out);
+  void link_or_hide(int e, int source, uint64_t key);
 
   /// What leaf e's own links (its element links and, once its patch's were handed down, its
   /// cluster links) give at point x of it: x its centroid (`corner` -1: the links' stored

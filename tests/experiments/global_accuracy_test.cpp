@@ -104,12 +104,12 @@ TEST(GlobalAccuracy, TheDefaultSolveOfTheRoomIsWithinTheTargets) {
 TEST(GlobalAccuracy, TheHierarchicalSolverIsWithinTheTargetsAndItsRefinementIsWhy) {
   // The hierarchical solver (radiosity/hierarchical_solver.h) against the same reference and
   // the same targets as the progressive solver above. Measured: Cornell box RMS 0.39%, largest
-  // 1.87% (point 17, the ceiling's corner); the room RMS 0.25%, largest 0.80%; unrefined, the
+  // 1.90% (point 17, the ceiling's corner); the room RMS 0.23%, largest 0.81%; unrefined, the
   // Cornell box is off by RMS 4.8%. Each piece of its refinement was taken out in turn and the
   // Cornell box's largest error grew past the target: the corner test where no neighbour plane
-  // fits (5.0%), the sources opened near a split receiver (5.3%), the hidden sources kept for
-  // the leaves (3.3%), the second sweep after a refinement (2.1%), the cluster links handed
-  // down with the patch links (2.2%).
+  // fits (5.1%), the sources opened near a split receiver (5.3%), the hidden sources kept from
+  // the first links (2.2%), the second sweep after a refinement (2.1%), the cluster links
+  // handed down with the patch links (2.2%).
   SolverSettings settings;
   settings.method = SolverSettings::Method::hierarchical;
   const AccuracyReport refined = default_accuracy("cornell-box", settings);
