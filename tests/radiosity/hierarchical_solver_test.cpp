@@ -37,7 +37,8 @@ TEST(HierarchicalSolver, FurnaceIsEOverOneMinusRho) {
   // exactly where every receiver's form factors sum to 1. At this size every pair is near, so
   // the links are the exact point-to-element form factors, whose rows sum to 1 in a closed
   // room (measured: 1 at every element, so none was scaled down): the largest error measured
-  // is 4e-16 in red and green, 2.4e-6 in blue (rho 0.8; the sweeps stop at 1e-6 of the light).
+  // is 3e-9 in red, 9e-9 in green (the links' factors are floats) and 6.5e-7 in blue (rho 0.8;
+  // the sweeps stop at 1e-6 of the light).
   Scene cube = load_scene(kScenes / "closed-cube/scene.json");
   cube.materials[0].reflectance = Rgb(0.2, 0.5, 0.8);
   const Rgb exact(1.25, 2, 5);
