@@ -181,13 +181,10 @@ bool HierarchicalSolver::link_down(int e, const SourceLink& link, std::vector<So
     for (int c = elements[s].first_child; c < elements[s].first_child + 4; ++c) pieces.push_back(c);
   }
   if (!pieces.empty()) {
-    const Patch source = source_patch(s);
-    Vec3 centre;
-    double area;
-    element_geometry(source.corners, &area, &centre);
-    const double radius = bounding_sphere(source.corners, centre).radius;
-    const double distance = (centre - el.centroid).norm() - radius;
-    if (distance > 0 && 2 * radius < kOpening * distance) pieces.clear();
+    const Vec3& centre = s < 0 ? centroid_[-1 - s] : elements[s].centroid;
+    const double radius =
+        s < 0 ? radius_[-1 - s] : bounding_sphere(elements[s].corners, centre).radius;
+    if (small_beside(2 * radius, (centre - el.centroid).norm() - radius)) pieces.clear();
   }
   if (pieces.empty()) {
     out.push_back(link);
@@ -221,8 +218,6 @@ void HierarchicalSolver::link_or_hide(int e, int source, uint64_t key) {
   }
 }
 
-/// What leaf e's own links (its sources near it) give at point x of it: x its centroid
-/// (`corner` -1: the links' stored factors) or its corner `corner` (measured now).
 Rgb HierarchicalSolver::own_gather(int e, const Vec3& x, int corner) const {
   const Element& el = solution_.elements[e];
   const Vec3& n = solution_.patches[el.patch].normal;

@@ -31,6 +31,8 @@ namespace rad {
 /// (docs/algorithms.md): RMS error at the accuracy points 6.6% at 0.5, 4.8% at 0.25, 3.9% at
 /// 0.1 (the progressive solver's, unrefined: 3.9%), for 0.7, 2.0 and 3.7 million links.
 inline constexpr double kOpening = 0.25;
+/// The opening test: a source of this size (a diameter) is small beside a gap this wide.
+inline bool small_beside(double size, double gap) { return gap > 0 && size < kOpening * gap; }
 /// H += factor B(source): a patch (patch links) or an element as the source (element links:
 /// element `source`, or patch -1 - source where a patch's links were handed down). The factor
 /// is grey: the solver carries no filters and no mirrors (hierarchical_unsupported()), so a
@@ -342,7 +344,7 @@ class HierarchicalSolver {
 
   /// What leaf e's own links (its element links and, once its patch's were handed down, its
   /// cluster links) give at point x of it: x its centroid (`corner` -1: the links' stored
-  /// factors) or its corner `corner` (measured now).
+  /// factors) or its corner `corner` (measured now, its hidden sources too).
   Rgb own_gather(int e, const Vec3& x, int corner) const;
 
   /// An element link's source: element s, or patch -1 - s (a patch link handed down).
@@ -379,7 +381,7 @@ class HierarchicalSolver {
       const PatchCluster& c = (*clusters_)[index];
       if (!(highest_above(c.box, p) > in_plane_)) continue;
       const double distance = std::sqrt(c.box.squaredExteriorDistance(x)) - radius_[p];
-      if (distance > 0 && c.size < kOpening * distance && link_cluster(p, index)) continue;
+      if (small_beside(c.size, distance) && link_cluster(p, index)) continue;
       if (c.left >= 0) {
         stack.push_back(c.left + 1);
         stack.push_back(c.left);
@@ -444,7 +446,7 @@ class HierarchicalSolver {
     if (p == q || rp.polygon == sq.polygon) return;  // a planar polygon does not see itself
     if (!in_front(p, q) || !in_front(q, p)) return;
     const double distance = (centroid_[q] - centroid_[p]).norm() - radius_[p] - radius_[q];
-    if (distance > 0 && 2 * std::max(radius_[p], radius_[q]) < kOpening * distance) {
+    if (small_beside(2 * std::max(radius_[p], radius_[q]), distance)) {
       const Rgb f = rays_.visible_form_factor(centroid_[p], rp.normal, rp.polygon, sq,
                                               stream_key(0, p, StreamKind::link, q));
       if (f != Rgb::Zero()) {

@@ -121,6 +121,7 @@ TEST(GlobalAccuracy, TheHierarchicalSolverIsWithinTheTargetsAndItsRefinementIsWh
   settings.refine_threshold = 0;
   const AccuracyReport unrefined = default_accuracy("cornell-box", settings);
   EXPECT_LT(refined.rms, 0.2 * unrefined.rms);
+  EXPECT_LT(refined.largest, 0.2 * unrefined.largest);
 }
 
 }  // namespace
