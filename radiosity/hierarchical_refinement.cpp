@@ -4,6 +4,8 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/lambert.h"
+#include "geometry/plane.h"
 #include "radiosity/hierarchical_state.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
@@ -26,6 +28,7 @@ int HierarchicalSolver::refine() {
   const double smallest = settings_.min_element_size * diagonal_;
   const double contact_size = std::max(smallest, settings_.patch_size * diagonal_ / 16);
   std::vector<char> split(mesh.face_count(), 0);
+  faint_dropped_.resize(elements.size(), 0);
   tbb::parallel_for(0, mesh.face_count(), [&](int f) {
     const int e = mesh.element(f);
     const Element& el = elements[e];
@@ -46,6 +49,7 @@ int HierarchicalSolver::refine() {
     // large solid angle, and takes it as uniform: split it where its own links give any
     // corner a radiosity off its centre's by more than the limit (as the progressive solver
     // does during its shots), down to contact_size.
+    drop_faint_hidden(e, reference);
     const Rgb centre = own_gather(e, el.centroid, -1);
     for (int k = 0; k < static_cast<int>(el.corners.size()) && !split[f]; ++k) {
       const Rgb corner = own_gather(e, el.corners[k], k);
@@ -108,6 +112,9 @@ int HierarchicalSolver::refine() {
   element_links_.resize(count);
   element_cluster_links_.resize(count);
   element_blocked_.resize(count);
+  faint_dropped_.resize(count, 0);
+  tbb::parallel_for(size_t(0), parents.size(),
+                    [&](size_t k) { drop_faint_hidden(parents[k], reference); });
   tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
     const int c = children[k];
     const Element& child = elements[c];
@@ -203,6 +210,37 @@ bool HierarchicalSolver::link_down(int e, const SourceLink& link, std::vector<So
     }
   }
   return true;
+}
+
+void HierarchicalSolver::drop_faint_hidden(int e, double reference) {
+  std::vector<int>& hidden = element_blocked_[e];
+  if (faint_dropped_[e] || hidden.empty()) return;
+  faint_dropped_[e] = 1;
+  const Element& el = solution_.elements[e];
+  const Vec3& n = solution_.patches[el.patch].normal;
+  const double rho = reflectance(e).maxCoeff();
+  // The limit is the smallest the refinement could take for e (the near-contact one).
+  const double budget = kFaintHidden * refinement_limit(settings_.refine_threshold, reference,
+                                                        radiosity_[e].maxCoeff(), true);
+  std::vector<std::pair<double, int>> reach;  // what each would bring e if seen whole
+  reach.reserve(hidden.size());
+  for (const int s : hidden) {
+    const Patch source = source_patch(s);
+    const double f = is_in_front_of(el.centroid, source.corners[0], source.normal)
+                         ? point_polygon_form_factor(el.centroid, n, source.corners)
+                         : 0.0;
+    reach.emplace_back(rho * std::max(0.0, f) * source_radiosity(s).maxCoeff(), s);
+  }
+  std::sort(reach.begin(), reach.end());  // (by reach, then index: the same for any thread)
+  double dropped = 0;
+  hidden.clear();
+  for (const auto& [brings, s] : reach) {
+    if (dropped + brings <= budget) {
+      dropped += brings;
+    } else {
+      hidden.push_back(s);
+    }
+  }
 }
 
 /// Measures leaf e's link to `source` (as element links name it) at e's centroid: a link where

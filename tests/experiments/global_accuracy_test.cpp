@@ -104,12 +104,13 @@ TEST(GlobalAccuracy, TheDefaultSolveOfTheRoomIsWithinTheTargets) {
 TEST(GlobalAccuracy, TheHierarchicalSolverIsWithinTheTargetsAndItsRefinementIsWhy) {
   // The hierarchical solver (radiosity/hierarchical_solver.h) against the same reference and
   // the same targets as the progressive solver above. Measured: Cornell box RMS 0.39%, largest
-  // 1.90% (point 17, the ceiling's corner); the room RMS 0.23%, largest 0.81%; unrefined, the
-  // Cornell box is off by RMS 4.8%. Each piece of its refinement was taken out in turn and the
-  // Cornell box's largest error grew past the target: the corner test where no neighbour plane
-  // fits (5.1%), the sources opened near a split receiver (5.3%), the hidden sources kept from
-  // the first links (2.2%), the second sweep after a refinement (2.1%), the cluster links
-  // handed down with the patch links (2.2%).
+  // 1.89% (point 17, the ceiling's corner); the room RMS 0.25%, largest 0.80%; unrefined, the
+  // Cornell box is off by RMS 4.8%. Each piece of its refinement was taken out in turn (at
+  // 56a75bd) and the Cornell box's largest error grew past the target: the corner test where
+  // no neighbour plane fits (5.1%), the sources opened near a split receiver (5.3%), the second
+  // sweep after a refinement (2.1%), the cluster links handed down with the patch links
+  // (2.2%). The hidden sources measured again by new leaves show in the room: without them
+  // its largest error is 1.37% (the Cornell box's 1.83%), so the room is held to 1%.
   SolverSettings settings;
   settings.method = SolverSettings::Method::hierarchical;
   const AccuracyReport refined = default_accuracy("cornell-box", settings);
@@ -117,7 +118,7 @@ TEST(GlobalAccuracy, TheHierarchicalSolverIsWithinTheTargetsAndItsRefinementIsWh
   EXPECT_LE(refined.largest, 0.02);
   const AccuracyReport room = default_accuracy("room-window", settings);
   EXPECT_LE(room.rms, 0.01);
-  EXPECT_LE(room.largest, 0.02);
+  EXPECT_LE(room.largest, 0.01);
   settings.refine_threshold = 0;
   const AccuracyReport unrefined = default_accuracy("cornell-box", settings);
   EXPECT_LT(refined.rms, 0.2 * unrefined.rms);
