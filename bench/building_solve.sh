@@ -38,7 +38,10 @@ points.write("series,polygons,seconds\n")
 def solve(binary, scene, output, extra=()):
     """Wall seconds and the summary line's numbers of one solve."""
     start = time.monotonic()
-    proc = subprocess.run([binary, "solve", scene, "-o", output, *coarse, *extra],
+    # The progressive solver's shots (this commit's default is the hierarchical solver; the
+    # earlier commit had only the progressive one).
+    solver = ["--solver", "progressive"] if binary == new else []
+    proc = subprocess.run([binary, "solve", scene, "-o", output, *coarse, *solver, *extra],
                           capture_output=True, text=True)
     wall = time.monotonic() - start
     if proc.returncode != 0:

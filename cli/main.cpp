@@ -93,7 +93,7 @@ int run_main(const rad::Job& job, int argc, char** argv) {
     std::cerr.rdbuf(&muted);
   }
   CLI::App app{
-      "radiosity: progressive radiosity with an exact, error-bounded local pass.\n"
+      "radiosity: a radiosity solver with an exact, error-bounded local pass.\n"
       "Results go to files or stdout; progress and messages to stderr.",
       "radiosity"};  // named, so that --help reads the same however it was invoked
   app.require_subcommand(1);

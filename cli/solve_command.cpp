@@ -127,36 +127,38 @@ void run_solve(const SolveOptions& o) {
 void add_solve_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<SolveOptions>();
   SolverSettings& s = o->settings;
+  // The hierarchical solver by default; scenes it does not carry yet fall back (run_solve).
+  s.method = SolverSettings::Method::hierarchical;
   CLI::App* sub = app.add_subcommand(
-      "solve",
-      "Mesh the scene and run progressive refinement radiosity; write the solution (.vtp).");
+      "solve", "Mesh the scene and solve its radiosity; write the solution (.vtp).");
   sub->footer(
-      "Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) in RGB: polygons\n"
-      "are cut along their contact lines (a block's foot on a floor), then into patches "
-      "(shooters)\n"
-      "of edge --patch-size x the scene diagonal, each 4^--element-levels elements (receivers);\n"
-      "what lies inside closed objects is buried and takes no part. The patch with the most\n"
-      "unshot power shoots, each element receiving Delta B x FF x V at its centroid (FF: "
-      "Lambert's\n"
-      "formula; V: --visibility-samples jittered shadow rays; each pair measured once for all\n"
-      "shots); elements near the shooter receive it piece by piece. Elements are split where\n"
-      "linear interpolation misses the received radiosity by more than --refine-threshold (near\n"
-      "a contact or concave edge: where any corner does), during shots and in --refine-passes\n"
-      "passes afterwards. Stops when the unshot power is below --unshot of the emitted. Prints a\n"
-      "summary and the energy ledger (emitted = absorbed + escaped + unshot [+ redirected: what\n"
-      "glossy surfaces reflect into their lobes, not carried]) on stderr. Bitwise\n"
-      "deterministic for a seed, whatever the thread count. Accuracy against time:\n"
-      "bench/results/global_accuracy.md. The algorithm: docs/algorithms.md.\n"
+      "Hierarchical radiosity with clustering (Hanrahan, Salzman, Aupperle 1991; Smits, Arvo,\n"
+      "Greenberg 1994) in RGB: polygons are cut along their contact lines (a block's foot on a\n"
+      "floor), then into patches of edge --patch-size x the scene diagonal, each\n"
+      "4^--element-levels elements; what lies inside closed objects is buried and takes no\n"
+      "part. Each patch is linked to whole clusters of patches far from it, to patches, or\n"
+      "element by element near it (form factor FF by Lambert's formula, times V: the share of\n"
+      "--visibility-samples jittered shadow rays that pass). Jacobi sweeps gather over the\n"
+      "links until the last sweep's change is below --unshot of the emitted power (--max-shots\n"
+      "counts sweeps); then --refine-passes passes split the elements whose radiosity is off\n"
+      "their neighbours' plane by more than --refine-threshold (near a contact or concave edge:\n"
+      "where any corner is), each new element measuring its own links, and sweep again.\n"
+      "Scenes with point lights, filters, refracting objects, mirrors or glossy surfaces are\n"
+      "solved progressively, with a line that says so.\n"
+      "--solver progressive: progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg\n"
+      "1988), every feature: the patch with the most unshot power shoots to every element,\n"
+      "elements near the shooter receiving it piece by piece and split during the shots;\n"
+      "stops when the unshot power is below --unshot of the emitted. The two against each\n"
+      "other: bench/results/hierarchical_solve.md.\n"
+      "Prints a summary, the energy ledger (emitted = absorbed + escaped + unshot [+\n"
+      "redirected: what glossy surfaces reflect into their lobes, not carried]) and a certified\n"
+      "bound on the solution's own error on stderr. Bitwise deterministic for a seed, whatever\n"
+      "the thread count. Accuracy against time: bench/results/global_accuracy.md. The\n"
+      "algorithms: docs/algorithms.md.\n"
       "Shows its progress with the time left (a bar on a terminal, else a line every --progress\n"
       "seconds). Refuses before any work a mesh that would need more than half the machine's\n"
       "memory, with the elements and memory it would need at the least. Interrupted, it\n"
-      "leaves no partial file.\n"
-      "--solver hierarchical: hierarchical radiosity with clustering instead (links between\n"
-      "each patch and whole clusters of patches far from it, Jacobi sweeps until the last\n"
-      "sweep's change is below --unshot of the emitted power, --max-shots counting sweeps;\n"
-      "then --refine-passes passes of splitting by --refine-threshold and sweeping again);\n"
-      "plain diffuse scenes. Against the progressive solver:\n"
-      "bench/results/hierarchical_solve.md.");
+      "leaves no partial file.");
   sub->add_option("scene", o->scene, kSceneHelp)->required();
   sub->add_option("-o,--output", o->output, "Solution file (.vtp, opens in ParaView)")->required();
   sub->add_option("--patch-size", s.patch_size,
@@ -168,10 +170,9 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->check(CLI::Range(0, 6))
       ->capture_default_str();
   sub->add_option("--refine-threshold", s.refine_threshold,
-                  "Split an element where its radiosity is off linear (during a shot) or off its "
-                  "neighbours' "
-                  "(after convergence) by more than this fraction of the local radiosity (0: no "
-                  "adaptive refinement)")
+                  "Split an element where its radiosity is off its neighbours' (after "
+                  "convergence; progressive: also off linear during a shot) by more than this "
+                  "fraction of the local radiosity (0: no adaptive refinement)")
       ->check(CLI::Range(0.0, 1e6))
       ->check(kFinite)
       ->capture_default_str();
@@ -186,11 +187,13 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--unshot", s.unshot_fraction,
-                  "Stop when the unshot power is below this fraction of the emitted")
+                  "Stop when the last sweep's change (progressive: the unshot power) is below "
+                  "this fraction of the emitted")
       ->check(CLI::Range(1e-12, 0.999999))
       ->check(kFinite)
       ->capture_default_str();
-  sub->add_option("--max-shots", s.max_shots, "Stop after this many shots in any case")
+  sub->add_option("--max-shots", s.max_shots,
+                  "Stop after this many sweeps (progressive: shots) in any case")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   sub->add_option("--visibility-samples", s.visibility_samples,
@@ -198,15 +201,15 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   sub->add_option("--solver", s.method,
-                  "progressive: progressive refinement (every feature); hierarchical: "
-                  "hierarchical radiosity with clustering, plain diffuse scenes (others are "
-                  "solved progressively, with a line that says so)")
+                  "hierarchical: hierarchical radiosity with clustering (plain diffuse scenes; "
+                  "others are solved progressively, with a line that says so); progressive: "
+                  "progressive refinement (every feature)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, SolverSettings::Method>{
               {"progressive", SolverSettings::Method::progressive},
               {"hierarchical", SolverSettings::Method::hierarchical}},
           CLI::ignore_case))
-      ->default_str("progressive");
+      ->default_str("hierarchical");
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
   sub->add_flag("--opaque-glass{false}", s.glass_as_filters,
                 "Keep refracting objects opaque and black to the solver (by default light "
