@@ -143,8 +143,8 @@ void add_solve_command(CLI::App& app, Run& run) {
       "counts sweeps); then --refine-passes passes split the elements whose radiosity is off\n"
       "their neighbours' plane by more than --refine-threshold (near a contact or concave edge:\n"
       "where any corner is), each new element measuring its own links, and sweep again.\n"
-      "Scenes with point lights, filters, refracting objects, mirrors or glossy surfaces are\n"
-      "solved progressively, with a line that says so.\n"
+      "Point lights shoot once, first. Scenes with filters, refracting objects, mirrors or\n"
+      "glossy surfaces are solved progressively, with a line that says so.\n"
       "--solver progressive: progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg\n"
       "1988), every feature: the patch with the most unshot power shoots to every element,\n"
       "elements near the shooter receiving it piece by piece and split during the shots;\n"
@@ -200,10 +200,12 @@ void add_solve_command(CLI::App& app, Run& run) {
                   "Shadow rays per receiver point and shooter")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
-  sub->add_option("--solver", s.method,
-                  "hierarchical: hierarchical radiosity with clustering (plain diffuse scenes; "
-                  "others are solved progressively, with a line that says so); progressive: "
-                  "progressive refinement (every feature)")
+  sub->add_option(
+         "--solver", s.method,
+         "hierarchical: hierarchical radiosity with clustering (diffuse surfaces and point "
+         "lights; "
+         "others are solved progressively, with a line that says so); progressive: "
+         "progressive refinement (every feature)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, SolverSettings::Method>{
               {"progressive", SolverSettings::Method::progressive},

@@ -54,8 +54,10 @@ int HierarchicalSolver::refine() {
     for (int k = 0; k < static_cast<int>(el.corners.size()) && !split[f]; ++k) {
       const Rgb corner = own_gather(e, el.corners[k], k);
       const Rgb rho = reflectance(e) * row_scale_[e];
-      const Rgb b_centre = el.radiosity,
-                b_corner = el.radiosity + rho.cwiseProduct(corner - centre);
+      const Rgb lit = lights_at(e, el.corners[k]) - direct_[e];
+      const Rgb b_centre = el.radiosity, b_corner = el.radiosity +
+                                                    rho.cwiseProduct(corner - centre) +
+                                                    reflectance(e).cwiseProduct(lit);
       split[f] = (b_corner - b_centre).cwiseAbs().maxCoeff() > limit(b_corner.cwiseMax(b_centre));
     }
   });
@@ -109,6 +111,7 @@ int HierarchicalSolver::refine() {
   buried_.resize(count, 0);
   radiosity_.resize(count, Rgb::Zero());
   row_scale_.resize(count, 1.0);
+  direct_.resize(count, Rgb::Zero());
   element_links_.resize(count);
   element_cluster_links_.resize(count);
   element_blocked_.resize(count);
@@ -122,6 +125,7 @@ int HierarchicalSolver::refine() {
     buried_[c] = rays_.is_buried(child.centroid, patch.normal);
     radiosity_[c] = radiosity_[child.parent];
     if (buried_[c]) return;
+    light(c);
     for (const SourceLink& l : element_links_[child.parent])
       link_or_hide(c, l.source, stream_key(0, c, StreamKind::link, l.source));
     for (const int s : element_blocked_[child.parent])

@@ -9,7 +9,6 @@
 namespace rad {
 
 std::string hierarchical_unsupported(const Scene& scene) {
-  if (!scene.lights.empty()) return "point lights";
   for (const Polygon& p : scene.polygons) {
     const Material& m = scene.materials[p.material];
     if (m.is_filter()) return "filters (transmitting materials)";

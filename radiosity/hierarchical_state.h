@@ -121,9 +121,12 @@ class HierarchicalSolver {
     }
     row_scale_.assign(solution_.elements.size(), 1.0);
     for (const int e : leaves_) row_scale_[e] = scale_of(e);
+    direct_.assign(solution_.elements.size(), Rgb::Zero());
+    tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) { light(leaves_[k]); });
     // The initial state: every live leaf radiates its emission.
     for (const int e : leaves_) radiosity_[e] = emission(e);
     for (const int e : leaves_) emitted_ += radiosity_[e] * solution_.elements[e].area;
+    emitted_ += scene_.light_power();
   }
 
   /// Leaf e's row sum (its patch's links' and its own, at a uniform radiosity of 1), and the
@@ -165,6 +168,7 @@ class HierarchicalSolver {
         for (const ClusterLink& l : element_cluster_links_[e])
           h += taken(l, clusters_->flux(l.cluster));
         h *= row_scale_[e];
+        h += direct_[e];
         irradiance[e] = h;
         next[e] = emission(e) + reflectance(e).cwiseProduct(h);
       });
@@ -253,6 +257,15 @@ class HierarchicalSolver {
     return scene_.materials[scene_.polygons[polygon].material];
   }
   Rgb emission(int e) const { return material(solution_.elements[e].polygon).emission; }
+  /// The point lights' irradiance at point x of element e (0 with no lights).
+  Rgb lights_at(int e, const Vec3& x) const {
+    if (scene_.lights.empty()) return Rgb::Zero();
+    return rays_.point_light_irradiance(x, solution_.patches[solution_.elements[e].patch].normal);
+  }
+  /// Leaf e's direct light from the point lights, at its centroid: their one shot (a light has
+  /// no area, so it is no link's source; the progressive solver shoots them once, first). What
+  /// reaches no leaf escapes in the ledger, as there.
+  void light(int e) { direct_[e] = lights_at(e, solution_.elements[e].centroid); }
   Rgb reflectance(int e) const { return material(solution_.elements[e].polygon).reflectance; }
 
   /// The live leaves (not buried inside a closed object, as solve() finds them) of each patch,
@@ -534,6 +547,7 @@ class HierarchicalSolver {
   /// kFaintHidden times its own limit).
   std::vector<char> faint_dropped_;
   std::vector<Rgb> radiosity_, patch_radiosity_, irradiance_;
+  std::vector<Rgb> direct_;         ///< Per leaf: the point lights' irradiance (light())
   std::vector<double> row_scale_;   ///< Per leaf: 1, or what brings its row sum down to 1
   std::vector<Rgb> patch_row_;      ///< Per patch: its links' row sum (their gather of 1)
   std::vector<char> buried_;        ///< Per element: inside a closed object (leaves only)

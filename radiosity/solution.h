@@ -42,8 +42,8 @@ struct SolverSettings {
   /// count notwithstanding.
   uint64_t seed = 1;
   /// Which solver: progressive refinement (radiosity/solver.h), or hierarchical radiosity with
-  /// clustering (radiosity/hierarchical_solver.h; plain diffuse scenes only, so far; max_shots
-  /// counts its sweeps). Not saved in the solution file.
+  /// clustering (radiosity/hierarchical_solver.h; diffuse surfaces and point lights, so far;
+  /// max_shots counts its sweeps). Not saved in the solution file.
   enum class Method { progressive, hierarchical };
   Method method = Method::progressive;
   /// Cast no shadow rays for pairs that no polygon can hide (shaft culling, geometry/shaft.h);

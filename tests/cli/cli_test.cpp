@@ -185,7 +185,8 @@ TEST(Cli, TheHierarchicalSolverSolvesOrSaysWhyItHandsOver) {
   r = run("solve " + lit + " --solver hierarchical --patch-size 0.3 --refine-threshold 0 -o '" +
           (dir / "g.vtp").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("does not carry point lights yet; solving progressively"), std::string::npos)
+  EXPECT_NE(r.err.find("does not carry mirrors and glossy surfaces yet; solving progressively"),
+            std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find(" shots, unshot "), std::string::npos) << r.err;
   EXPECT_EQ(

@@ -1,6 +1,7 @@
 // The hierarchical solver (radiosity/hierarchical_solver.h): the furnace's closed form, the
-// progressive solver as its peer on the Cornell box, a far cluster against a closed form, the
-// same bytes for any thread count, and the scenes it does not carry yet. (Its bound against
+// progressive solver as its peer on the Cornell box, a far cluster and a point light against
+// closed forms, a closed room's ledger, the same bytes for any thread count, and the scenes it
+// does not carry yet. (Its bound against
 // the same links swept further: tests/radiosity/error_bound_test.cpp, with the progressive
 // solver's.)
 #include "radiosity/hierarchical_solver.h"
@@ -128,6 +129,67 @@ TEST(HierarchicalSolver, AFarClusterSendsTheFluxOfTheFacesTurnedToTheReceiver) {
   EXPECT_NEAR(mean, 0.5 * ff, 0.01 * 0.5 * ff);
 }
 
+TEST(HierarchicalSolver, APointLightReachesEachLeafByTheInverseSquareCosineLaw) {
+  // A 2 x 2 floor (rho 0.5) under a point light of intensity I = (1, 2, 3) W/sr at height 0.3
+  // over its centre, nothing else: each leaf's irradiance is I cos / r^2 at its centroid
+  // (computed here), its radiosity rho times that (a flat floor sees nothing of itself), and
+  // the floor takes I times its solid angle, 4 asin(a b / sqrt((a^2 + 4h^2)(b^2 + 4h^2)))
+  // (Howell's catalog), to the midpoint rule's error (measured: 0.05%). Refinement splits the
+  // floor under the light (its fall-off is off the neighbours' plane: 292 leaves), so new
+  // leaves are lit too.
+  test::SceneBuilder b;
+  b.rectangle(-1, 1, -1, 1, 0, false, b.material("floor", Rgb::Constant(0.5), Rgb::Zero()));
+  const Vec3 lamp(0, 0, 0.3);
+  const Rgb intensity(1, 2, 3);
+  b.scene().lights.push_back({lamp, intensity});
+  SolverSettings settings;
+  settings.patch_size = 0.05;
+  settings.refine_threshold = 0.01;
+  const Solution s = solve_with(b.scene(), settings, kHierarchical);
+  EXPECT_GT(s.stats.refined, 0);
+  Rgb power = Rgb::Zero();
+  double worst = 0;
+  for (const int e : s.leaves()) {
+    const Element& el = s.elements[e];
+    const Vec3 to = lamp - el.centroid;
+    const Rgb exact = intensity * (to.z() / std::pow(to.norm(), 3));
+    worst = std::max(worst, ((el.irradiance - exact).cwiseQuotient(exact)).cwiseAbs().maxCoeff());
+    worst = std::max(
+        worst, ((el.radiosity - 0.5 * exact).cwiseQuotient(0.5 * exact)).cwiseAbs().maxCoeff());
+    power += el.irradiance * el.area;
+  }
+  EXPECT_LT(worst, 1e-9);
+  const double solid_angle = 4 * std::asin(4.0 / (4.0 + 4 * 0.3 * 0.3));
+  std::cout << "floor under a point light: " << s.stats.refined << " split, power ("
+            << power.transpose() << "), closed form " << solid_angle << " I\n";
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(power[c], intensity[c] * solid_angle, 2e-3 * intensity[c] * solid_angle);
+  // The ledger: the light's power is emitted; what misses the floor escapes.
+  const Rgb light_power = 4 * std::numbers::pi * intensity;
+  EXPECT_LT((s.stats.emitted - light_power).cwiseAbs().maxCoeff(), 1e-9 * light_power.maxCoeff());
+  EXPECT_LT((s.stats.absorbed - 0.5 * power).cwiseAbs().maxCoeff(), 1e-9 * power.maxCoeff());
+}
+
+TEST(HierarchicalSolver, AClosedRoomAbsorbsAllOfAPointLightsPower) {
+  // The closed cube, dark (E = 0), rho = (0.2, 0.5, 0.8), a point light at its centre: nothing
+  // escapes, so what the walls absorb, sum (1 - rho) H A, is the light's power 4 pi I, however
+  // many bounces it takes (measured: within 0.2% in every channel). A light left out of the
+  // gather, or counted on a leaf's radiosity without its reflection, breaks it by its whole
+  // share.
+  Scene cube = load_scene(kScenes / "closed-cube/scene.json");
+  cube.materials[0].reflectance = Rgb(0.2, 0.5, 0.8);
+  cube.materials[0].emission = Rgb::Zero();
+  cube.lights.push_back({Vec3(0.5, 0.5, 0.5), Rgb::Ones()});
+  SolverSettings settings;
+  settings.patch_size = 0.1;
+  settings.unshot_fraction = 1e-6;
+  const Solution s = solve_with(cube, settings, kHierarchical);
+  const double power = 4 * std::numbers::pi;
+  std::cout << "closed room lit by a point light: absorbed (" << s.stats.absorbed.transpose()
+            << ") of " << power << "\n";
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.stats.absorbed[c], power, 5e-3 * power);
+}
+
 TEST(HierarchicalSolver, SameBytesForAnyThreadCount) {
   const Scene scene = load_scene(kScenes / "cornell-box/scene.json");
   SolverSettings settings;
@@ -152,7 +214,7 @@ TEST(HierarchicalSolver, NamesWhatItDoesNotCarryYet) {
   EXPECT_EQ(hierarchical_unsupported(scene), "");
   Scene lit = scene;
   lit.lights.push_back({Vec3(0.5, 0.5, 0.5), Rgb::Ones()});
-  EXPECT_EQ(hierarchical_unsupported(lit), "point lights");
+  EXPECT_EQ(hierarchical_unsupported(lit), "");
   Scene pane = scene;
   pane.materials[0].transmittance = Rgb::Constant(0.2);
   pane.materials[0].reflectance = Rgb::Constant(0.3);
@@ -161,7 +223,7 @@ TEST(HierarchicalSolver, NamesWhatItDoesNotCarryYet) {
   mirror.materials[0].specular = Rgb::Constant(0.5);
   mirror.materials[0].reflectance = Rgb::Constant(0.3);
   EXPECT_EQ(hierarchical_unsupported(mirror), "mirrors and glossy surfaces");
-  const RayCaster caster(lit);
+  const RayCaster caster(pane);
   SolverSettings settings;
   settings.method = kHierarchical;
   EXPECT_THROW(solve(caster, settings), Error);
