@@ -127,29 +127,30 @@ void run_solve(const SolveOptions& o) {
 void add_solve_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<SolveOptions>();
   SolverSettings& s = o->settings;
-  // The hierarchical solver by default; scenes it does not carry yet fall back (run_solve).
-  s.method = SolverSettings::Method::hierarchical;
   CLI::App* sub = app.add_subcommand(
       "solve", "Mesh the scene and solve its radiosity; write the solution (.vtp).");
   sub->footer(
-      "Hierarchical radiosity with clustering (Hanrahan, Salzman, Aupperle 1991; Smits, Arvo,\n"
-      "Greenberg 1994) in RGB: polygons are cut along their contact lines (a block's foot on a\n"
-      "floor), then into patches of edge --patch-size x the scene diagonal, each\n"
-      "4^--element-levels elements; what lies inside closed objects is buried and takes no\n"
-      "part. Each patch is linked to whole clusters of patches far from it, to patches, or\n"
-      "element by element near it (form factor FF by Lambert's formula, times V: the share of\n"
-      "--visibility-samples jittered shadow rays that pass). Jacobi sweeps gather over the\n"
-      "links until the last sweep's change is below --unshot of the emitted power (--max-shots\n"
-      "counts sweeps); then --refine-passes passes split the elements whose radiosity is off\n"
-      "their neighbours' plane by more than --refine-threshold (near a contact or concave edge:\n"
-      "where any corner is), each new element measuring its own links, and sweep again.\n"
-      "Point lights shoot once, first. Scenes with filters, refracting objects, mirrors or\n"
-      "glossy surfaces are solved progressively, with a line that says so.\n"
-      "--solver progressive: progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg\n"
-      "1988), every feature: the patch with the most unshot power shoots to every element,\n"
-      "elements near the shooter receiving it piece by piece and split during the shots;\n"
-      "stops when the unshot power is below --unshot of the emitted. The two against each\n"
-      "other: bench/results/hierarchical_solve.md.\n"
+      "Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) in RGB, every\n"
+      "feature: polygons are cut along their contact lines (a block's foot on a floor), then\n"
+      "into patches (shooters) of edge --patch-size x the scene diagonal, each\n"
+      "4^--element-levels elements (receivers); what lies inside closed objects is buried and\n"
+      "takes no part. The patch with the most unshot power shoots, each element receiving\n"
+      "Delta B x FF x V at its centroid (FF: Lambert's formula; V: the share of\n"
+      "--visibility-samples jittered shadow rays that pass; each pair measured once for all\n"
+      "shots); elements near the shooter receive it piece by piece. Elements are split where\n"
+      "linear interpolation misses the received radiosity by more than --refine-threshold (near\n"
+      "a contact or concave edge: where any corner does), during shots and in --refine-passes\n"
+      "passes afterwards. Stops when the unshot power is below --unshot of the emitted.\n"
+      "--solver hierarchical: hierarchical radiosity with clustering (Hanrahan, Salzman,\n"
+      "Aupperle 1991; Smits, Arvo, Greenberg 1994) on the same mesh: each patch is linked to\n"
+      "whole clusters of patches far from it, to patches, or element by element near it;\n"
+      "Jacobi sweeps gather over the links until the last sweep's change is below --unshot of\n"
+      "the emitted power (--max-shots counts sweeps); then --refine-passes passes split the\n"
+      "elements off their neighbours' plane (near a contact: where any corner is), each new\n"
+      "element measuring its own links, and sweep again. Point lights shoot once, first;\n"
+      "scenes with filters, refracting objects, mirrors or glossy surfaces are solved\n"
+      "progressively, with a line that says so. The two against each other:\n"
+      "bench/results/hierarchical_solve.md.\n"
       "Prints a summary, the energy ledger (emitted = absorbed + escaped + unshot [+\n"
       "redirected: what glossy surfaces reflect into their lobes, not carried]) and a certified\n"
       "bound on the solution's own error on stderr. Bitwise deterministic for a seed, whatever\n"
@@ -170,8 +171,8 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->check(CLI::Range(0, 6))
       ->capture_default_str();
   sub->add_option("--refine-threshold", s.refine_threshold,
-                  "Split an element where its radiosity is off its neighbours' (after "
-                  "convergence; progressive: also off linear during a shot) by more than this "
+                  "Split an element where its radiosity is off linear (during a shot) or off its "
+                  "neighbours' (after convergence; hierarchical: only then) by more than this "
                   "fraction of the local radiosity (0: no adaptive refinement)")
       ->check(CLI::Range(0.0, 1e6))
       ->check(kFinite)
@@ -187,31 +188,29 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--unshot", s.unshot_fraction,
-                  "Stop when the last sweep's change (progressive: the unshot power) is below "
+                  "Stop when the unshot power (hierarchical: the last sweep's change) is below "
                   "this fraction of the emitted")
       ->check(CLI::Range(1e-12, 0.999999))
       ->check(kFinite)
       ->capture_default_str();
   sub->add_option("--max-shots", s.max_shots,
-                  "Stop after this many sweeps (progressive: shots) in any case")
+                  "Stop after this many shots (hierarchical: sweeps) in any case")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   sub->add_option("--visibility-samples", s.visibility_samples,
                   "Shadow rays per receiver point and shooter")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
-  sub->add_option(
-         "--solver", s.method,
-         "hierarchical: hierarchical radiosity with clustering (diffuse surfaces and point "
-         "lights; "
-         "others are solved progressively, with a line that says so); progressive: "
-         "progressive refinement (every feature)")
+  sub->add_option("--solver", s.method,
+                  "progressive: progressive refinement (every feature); hierarchical: hierarchical "
+                  "radiosity with clustering (diffuse surfaces and point lights; others are solved "
+                  "progressively, with a line that says so)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, SolverSettings::Method>{
               {"progressive", SolverSettings::Method::progressive},
               {"hierarchical", SolverSettings::Method::hierarchical}},
           CLI::ignore_case))
-      ->default_str("hierarchical");
+      ->default_str("progressive");
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
   sub->add_flag("--opaque-glass{false}", s.glass_as_filters,
                 "Keep refracting objects opaque and black to the solver (by default light "

@@ -3,8 +3,8 @@
 /// level that their size and distance allow (Hanrahan, Salzman and Aupperle 1991), with whole
 /// clusters of patches as sources far away (Smits, Arvo and Greenberg 1994; Sillion 1995), and
 /// Jacobi gathering over the links. docs/algorithms.md, "The hierarchical solver", has the
-/// method and what it approximates. It carries diffuse surfaces and point lights; `radiosity
-/// solve` takes it by default and solves other scenes progressively (SolverSettings::method).
+/// method and what it approximates. It carries diffuse surfaces and point lights (`radiosity
+/// solve --solver hierarchical` solves other scenes progressively; SolverSettings::method).
 #include <functional>
 #include <string>
 

@@ -202,7 +202,7 @@ TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
   Result r = run("--progress 0.05 solve " + cornell + quick + " --unshot 0.01 -o " +
                  quoted(dir / "a.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // The hierarchical solver (the default) links, then gathers; the progressive one shoots.
+  // The progressive solver (the default) shoots; the hierarchical one links, then gathers.
   const auto progress_lines = [](const std::string& log, const std::string& stage,
                                  const std::string& detail) {
     int lines = 0, staged = 0;
@@ -219,12 +219,12 @@ TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
     EXPECT_GE(staged, 1) << log;
     return lines;
   };
-  EXPECT_GE(progress_lines(r.err, "gathering", "% (target 1%), sweep "), 3) << r.err;
-  EXPECT_EQ(r.err.find("\r"), std::string::npos) << "no bar when stderr is not a terminal";
-  r = run("--progress 0.05 solve " + cornell + quick + " --solver progressive --unshot 0.01 -o " +
-          quoted(dir / "p.vtp"));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GE(progress_lines(r.err, "shooting", "% (target 1%), shot "), 3) << r.err;
+  EXPECT_EQ(r.err.find("\r"), std::string::npos) << "no bar when stderr is not a terminal";
+  r = run("--progress 0.05 solve " + cornell + quick + " --solver hierarchical --unshot 0.01 -o " +
+          quoted(dir / "h.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GE(progress_lines(r.err, "gathering", "% (target 1%), sweep "), 3) << r.err;
   r = run("--progress 0 solve " + cornell + quick + " --unshot 0.01 -o " + quoted(dir / "b.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("solve ("), std::string::npos) << r.err;
