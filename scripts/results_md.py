@@ -225,6 +225,13 @@ def main():
         "reference). How the hierarchical solver works and what limits it:",
         "[algorithms.md](algorithms.md#the-hierarchical-solver).",
     ], [], [("solve time against polygons, both solvers", "images/hierarchical-solve.png")])
+    bench_tables(out, "bench/results/ifc_house_solvers.md",
+        "## The two solvers on the IFC house", [
+        "From [`bench/results/ifc_house_solvers.md`](../bench/results/ifc_house_solvers.md)",
+        "(`bash bench/ifc_house_solvers.sh`): both solvers in the same run on the IFC house of",
+        "bench/ifc_house.sh, at coarse settings. Why the hierarchical solver is slower there:",
+        "[algorithms.md](algorithms.md#the-hierarchical-solver).",
+    ], [], [])
     w("## Stability")
     w("")
     w("From [`bench/results/stability.md`](../bench/results/stability.md) (`make stability`): the")
