@@ -38,8 +38,8 @@ points.write("series,polygons,seconds\n")
 def solve(binary, scene, output, extra=()):
     """Wall seconds and the summary line's numbers of one solve."""
     start = time.monotonic()
-    # The progressive solver's shots (this commit's default is the hierarchical solver; the
-    # earlier commit had only the progressive one).
+    # This commit's progressive solver by name (the one whose shots the table counts); the
+    # earlier commit had no other.
     solver = ["--solver", "progressive"] if binary == new else []
     proc = subprocess.run([binary, "solve", scene, "-o", output, *coarse, *solver, *extra],
                           capture_output=True, text=True)

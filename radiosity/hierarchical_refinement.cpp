@@ -4,8 +4,6 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/lambert.h"
-#include "geometry/plane.h"
 #include "radiosity/hierarchical_state.h"
 #include "radiosity/mesher.h"
 #include "radiosity/patch_mesh.h"
@@ -230,9 +228,7 @@ void HierarchicalSolver::drop_faint_hidden(int e, double reference) {
   reach.reserve(hidden.size());
   for (const int s : hidden) {
     const Patch source = source_patch(s);
-    const double f = is_in_front_of(el.centroid, source.corners[0], source.normal)
-                         ? point_polygon_form_factor(el.centroid, n, source.corners)
-                         : 0.0;
+    const double f = unblocked_form_factor(el.centroid, n, source.corners, source.normal);
     reach.emplace_back(rho * std::max(0.0, f) * source_radiosity(s).maxCoeff(), s);
   }
   std::sort(reach.begin(), reach.end());  // (by reach, then index: the same for any thread)

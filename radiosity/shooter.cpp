@@ -74,6 +74,12 @@ Shooter::Shooter(const RayCaster& caster, const SolverSettings& settings, double
 
 Rgb Shooter::point_light_irradiance(const Vec3& x, const Vec3& n) const { return lights_(x, n); }
 
+double unblocked_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& corners,
+                             const Vec3& normal) {
+  if (!is_in_front_of(x, corners[0], normal)) return 0;
+  return point_polygon_form_factor(x, n, corners);
+}
+
 Rgb Shooter::visible_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                                  uint64_t key, int fewer) const {
   const int side = std::max(1, side_ / std::max(1, fewer));
@@ -144,8 +150,7 @@ Rgb Shooter::image_form_factor(const Vec3& x, const Vec3& n, const Patch& shoote
   for (auto j = chain.rbegin(); j != chain.rend(); ++j)
     normal = pieces_[*j].reflect_direction(normal);
   if (chain.size() % 2 == 1) std::reverse(corners.begin(), corners.end());
-  if (!is_in_front_of(x, corners[0], normal)) return Rgb::Zero();
-  const double ff = point_polygon_form_factor(x, n, corners);
+  const double ff = unblocked_form_factor(x, n, corners, normal);
   if (!(ff > 0)) return Rgb::Zero();
   Rgb specular = Rgb::Ones();
   for (const int j : chain) specular = specular.cwiseProduct(pieces_[j].specular);
@@ -286,8 +291,7 @@ bool Shooter::hides_all(const Vec3& x, const Patch& shooter, int blocker) const 
 Rgb Shooter::direct_form_factor(const Vec3& x, const Vec3& n, int polygon, const Patch& shooter,
                                 uint64_t key, int side) const {
   if (polygon == shooter.polygon) return Rgb::Zero();  // a planar polygon cannot see itself
-  if (!is_in_front_of(x, shooter.corners[0], shooter.normal)) return Rgb::Zero();
-  const double ff = point_polygon_form_factor(x, n, shooter.corners);
+  const double ff = unblocked_form_factor(x, n, shooter.corners, shooter.normal);
   if (!(ff > 0)) return Rgb::Zero();
   PairCounts& counted = counts_.local();
   ++counted.pairs;

@@ -27,6 +27,11 @@ Sphere bounding_sphere(const std::vector<Vec3>& corners, const Vec3& centre);
 /// square is folded onto the triangle (area-preserving up to the fold).
 Vec3 patch_point(const Patch& p, double u, double v);
 
+/// Lambert's form factor from x (unit normal n) to the convex polygon `corners` of unit normal
+/// `normal`, with nothing between, where x is in front of the polygon; 0 behind it.
+double unblocked_form_factor(const Vec3& x, const Vec3& n, const std::vector<Vec3>& corners,
+                             const Vec3& normal);
+
 class Shooter {
  public:
   /// `epsilon`: surfaces this close to either end of a shadow ray are not counted.

@@ -1,9 +1,8 @@
 // The hierarchical solver (radiosity/hierarchical_solver.h): the furnace's closed form, the
 // progressive solver as its peer on the Cornell box, a far cluster and a point light against
 // closed forms, a closed room's ledger, the same bytes for any thread count, and the scenes it
-// does not carry yet. (Its bound against
-// the same links swept further: tests/radiosity/error_bound_test.cpp, with the progressive
-// solver's.)
+// does not carry yet. (Its bound against the same links swept further:
+// tests/radiosity/error_bound_test.cpp, with the progressive solver's.)
 #include "radiosity/hierarchical_solver.h"
 
 #include <gtest/gtest.h>
