@@ -118,8 +118,13 @@ void run_solve(const SolveOptions& o) {
             << " W/m^2 of the exact solution of its discrete system (certified; "
             << (s.links > 0 ? "the sweeps not yet made, not the links' approximations"
                             : "the light not yet shot")
-            << ", not the meshing: docs/algorithms.md)\n"
-            << "wrote " << o.output << "\n";
+            << ", not the meshing: docs/algorithms.md)\n";
+  if (s.links > 0) {
+    std::cerr << "left out of the links: " << s.left_out
+              << " faint clusters and patches, bringing any element at most " << s.left_out_bound
+              << " W/m^2 of irradiance (certified, at the final radiosity)\n";
+  }
+  std::cerr << "wrote " << o.output << "\n";
 }
 
 }  // namespace

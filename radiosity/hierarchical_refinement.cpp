@@ -73,29 +73,7 @@ int HierarchicalSolver::refine() {
   }
   std::sort(handed.begin(), handed.end());
   handed.erase(std::unique(handed.begin(), handed.end()), handed.end());
-  std::vector<int> handed_leaves;
-  for (const int p : handed) {
-    for (const int e : patch_leaves_[p]) handed_leaves.push_back(e);
-  }
-  tbb::parallel_for(size_t(0), handed_leaves.size(), [&](size_t k) {
-    const int e = handed_leaves[k];
-    const Element& el = elements[e];
-    const Patch& patch = solution_.patches[el.patch];
-    for (const SourceLink& l : patch_links_[el.patch])
-      link_or_hide(e, -1 - l.source, stream_key(1, e, StreamKind::link, l.source));
-    for (const int q : patch_blocked_[el.patch])
-      link_or_hide(e, -1 - q, stream_key(1, e, StreamKind::link, q));
-    for (const ClusterLink& l : cluster_links_[el.patch])
-      element_cluster_links_[e].push_back(
-          {l.cluster, cluster_weights(l.cluster, el.centroid, patch.normal)});
-  });
-  for (const int p : handed) {
-    std::vector<SourceLink>().swap(patch_links_[p]);
-    std::vector<ClusterLink>().swap(cluster_links_[p]);
-    std::vector<int>().swap(patch_blocked_[p]);
-    patch_row_[p] = Rgb::Zero();
-  }
-  for (const int e : handed_leaves) row_scale_[e] = scale_of(e);
+  hand_down(handed);
   for (int f = 0; f < mesh.face_count(); ++f) {
     if (!split[f]) continue;
     const int e = mesh.element(f);
@@ -151,6 +129,34 @@ int HierarchicalSolver::refine() {
   return static_cast<int>(parents.size());
 }
 
+void HierarchicalSolver::hand_down(const std::vector<int>& handed) {
+  const std::vector<Element>& elements = solution_.elements;
+  std::vector<int> handed_leaves;
+  for (const int p : handed) {
+    for (const int e : patch_leaves_[p]) handed_leaves.push_back(e);
+  }
+  tbb::parallel_for(size_t(0), handed_leaves.size(), [&](size_t k) {
+    const int e = handed_leaves[k];
+    const Element& el = elements[e];
+    const Patch& patch = solution_.patches[el.patch];
+    for (const SourceLink& l : patch_links_[el.patch])
+      link_or_hide(e, -1 - l.source, stream_key(1, e, StreamKind::link, l.source));
+    for (const int q : patch_blocked_[el.patch])
+      link_or_hide(e, -1 - q, stream_key(1, e, StreamKind::link, q));
+    for (const ClusterLink& l : cluster_links_[el.patch])
+      element_cluster_links_[e].push_back(
+          {l.cluster, cluster_weights(l.cluster, el.centroid, patch.normal)});
+  });
+  for (const int p : handed) {
+    handed_[p] = 1;
+    std::vector<SourceLink>().swap(patch_links_[p]);
+    std::vector<ClusterLink>().swap(cluster_links_[p]);
+    std::vector<int>().swap(patch_blocked_[p]);
+    patch_row_[p] = Rgb::Zero();
+  }
+  for (const int e : handed_leaves) row_scale_[e] = scale_of(e);
+}
+
 void HierarchicalSolver::open_sources() {
   const std::vector<Element>& elements = solution_.elements;
   tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) {
@@ -168,11 +174,7 @@ void HierarchicalSolver::open_sources() {
     links.swap(out);
     row_scale_[e] = scale_of(e);
   });
-  links_ = 0;
-  for (size_t p = 0; p < patch_links_.size(); ++p)
-    links_ += static_cast<long long>(patch_links_[p].size() + cluster_links_[p].size());
-  for (size_t e = 0; e < elements.size(); ++e)
-    links_ += static_cast<long long>(element_links_[e].size() + element_cluster_links_[e].size());
+  count_links();
 }
 
 /// Appends to `out` leaf e's link to the source of `link`, or, where that source has pieces

@@ -18,6 +18,9 @@ std::string hierarchical_unsupported(const Scene& scene) {
   return {};
 }
 
+/// At most this many times the sweeps converge again after opening what linking left out.
+constexpr int kOpeningRounds = 16;
+
 Solution solve_hierarchical(const RayCaster& caster, const SolverSettings& settings,
                             const std::function<void(const SolveProgress&)>& progress) {
   settings.validate();
@@ -25,11 +28,18 @@ Solution solve_hierarchical(const RayCaster& caster, const SolverSettings& setti
     throw Error("the hierarchical solver does not carry " + missing + " yet");
   const auto start = std::chrono::steady_clock::now();
   HierarchicalSolver solver(caster, settings, progress);
+  // Sweeps until converged, then until no link linking left out has become bright enough to
+  // be opened (light reaches the surfaces that were dark at first bounce by bounce).
+  const auto converge = [&] {
+    solver.iterate();
+    for (int round = 0; round < kOpeningRounds && solver.open_deferred() > 0; ++round)
+      solver.iterate();
+  };
   solver.link();
-  solver.iterate();
+  converge();
   for (int pass = 0; pass < settings.refine_passes; ++pass) {
     if (solver.refine() == 0) break;
-    solver.iterate();
+    converge();
   }
   return solver.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -22,6 +22,7 @@
 #include "radiosity/random_stream.h"
 #include "radiosity/refinement_limit.h"
 #include "radiosity/shooter.h"
+#include "radiosity/solver.h"
 
 namespace rad {
 
@@ -39,6 +40,10 @@ inline bool small_beside(double size, double gap) { return gap > 0 && size < kOp
 /// measured again), 1.89% and 0.80% at 0.5; a furnished room solves 1.26 times faster
 /// (docs/algorithms.md).
 inline constexpr double kFaintHidden = 0.5;
+/// Linking leaves a cluster or a patch out when what it may bring (its reach) is within this
+/// fraction of the receiver's budget, and leaves out at most the budget in all
+/// (HierarchicalSolver::settle).
+inline constexpr double kDeferredPieces = 8;
 /// H += factor B(source): a patch (patch links) or an element as the source (element links:
 /// element `source`, or patch -1 - source where a patch's links were handed down). The factor
 /// is grey: the solver carries no filters and no mirrors (hierarchical_unsupported()), so a
@@ -93,20 +98,27 @@ class HierarchicalSolver {
     const size_t count = solution_.patches.size();
     patch_links_.resize(count);
     cluster_links_.resize(count);
+    deferred_.resize(count);
+    handed_.assign(count, 0);
     element_links_.resize(solution_.elements.size());
     element_cluster_links_.resize(solution_.elements.size());
     element_blocked_.resize(solution_.elements.size());
     patch_blocked_.resize(count);
+    // What linking may leave out is judged by the light each leaf starts with: its emission
+    // and what it reflects of the point lights.
+    direct_.assign(solution_.elements.size(), Rgb::Zero());
+    tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) { light(leaves_[k]); });
+    std::vector<Rgb> first_light(solution_.elements.size(), Rgb::Zero());
+    for (const int e : leaves_)
+      first_light[e] = emission(e) + reflectance(e).cwiseProduct(direct_[e]);
+    find_brightest(first_light);
     const size_t part = std::max<size_t>(256, count / 100);
     for (size_t begin = 0; begin < count; begin += part) {
       report(SolveProgress::Stage::linking, static_cast<double>(begin) / count);
       tbb::parallel_for(begin, std::min(count, begin + part),
                         [&](size_t p) { link_patch(static_cast<int>(p)); });
     }
-    for (size_t p = 0; p < count; ++p) {
-      links_ += static_cast<long long>(patch_links_[p].size() + cluster_links_[p].size());
-    }
-    for (const auto& l : element_links_) links_ += static_cast<long long>(l.size());
+    count_links();
     // The links' row sums: the gather of a uniform radiosity of 1. The exact form factors of a
     // point sum to at most 1 (to the hemisphere); the clusters' and the centroids' estimates
     // can pass it, and a row that does is scaled back to 1, so that no element takes in more
@@ -116,17 +128,35 @@ class HierarchicalSolver {
     unit_flux_.resize(clusters_->size());
     for (int c = 0; c < clusters_->size(); ++c) unit_flux_[c] = clusters_->flux(c);
     patch_row_.resize(count);
-    for (size_t p = 0; p < count; ++p) {
-      patch_row_[p] = gather_at_patch(static_cast<int>(p));
-    }
+    for (size_t p = 0; p < count; ++p) patch_row_[p] = patch_row(static_cast<int>(p));
     row_scale_.assign(solution_.elements.size(), 1.0);
     for (const int e : leaves_) row_scale_[e] = scale_of(e);
-    direct_.assign(solution_.elements.size(), Rgb::Zero());
-    tbb::parallel_for(size_t(0), leaves_.size(), [&](size_t k) { light(leaves_[k]); });
     // The initial state: every live leaf radiates its emission.
     for (const int e : leaves_) radiosity_[e] = emission(e);
     for (const int e : leaves_) emitted_ += radiosity_[e] * solution_.elements[e].area;
     emitted_ += scene_.light_power();
+  }
+
+  /// Opens, for each patch, the clusters and patches its linking left out (deferred_) where
+  /// the leaves' radiosity now makes them pass its budget (Hanrahan, Salzman and Aupperle's
+  /// BF refinement: a link is refined where its form factor times its source's radiosity is
+  /// large, and the radiosity is known only as the solution proceeds). Returns the number
+  /// opened; the sweeps are to go on when it is not 0.
+  int open_deferred();
+
+  /// Patch p's links' row sum: their gather of a uniform radiosity of 1.
+  Rgb patch_row(int p) const {
+    Rgb h = Rgb::Zero();
+    for (const SourceLink& l : patch_links_[p]) h += Rgb::Constant(l.factor);
+    for (const ClusterLink& l : cluster_links_[p]) h += taken(l, unit_flux_[l.cluster]);
+    return h;
+  }
+  void count_links() {
+    links_ = 0;
+    for (size_t p = 0; p < patch_links_.size(); ++p)
+      links_ += static_cast<long long>(patch_links_[p].size() + cluster_links_[p].size());
+    for (size_t e = 0; e < element_links_.size(); ++e)
+      links_ += static_cast<long long>(element_links_[e].size() + element_cluster_links_[e].size());
   }
 
   /// Leaf e's row sum (its patch's links' and its own, at a uniform radiosity of 1), and the
@@ -242,6 +272,13 @@ class HierarchicalSolver {
     stats.unhidden_pairs = counted.unhidden;
     stats.hidden_pairs = counted.hidden;
     stats.error_bound = error_bound();
+    find_brightest(radiosity_);
+    for (size_t p = 0; p < deferred_.size(); ++p) {
+      double reaches = 0;
+      for (const int entry : deferred_[p]) reaches += reach(static_cast<int>(p), entry);
+      stats.left_out += static_cast<long long>(deferred_[p].size());
+      stats.left_out_bound = std::max(stats.left_out_bound, reaches);
+    }
     return std::move(solution_);
   }
 
@@ -398,105 +435,47 @@ class HierarchicalSolver {
                        [&](const Vec3& c) { return pb.normal.dot(c - pb.corners[0]) > in_plane_; });
   }
 
-  void link_patch(int p) {
-    if (patch_leaves_[p].empty() || clusters_->empty()) return;
-    const Vec3& x = centroid_[p];
-    std::vector<int> stack{0};
-    while (!stack.empty()) {
-      const int index = stack.back();
-      stack.pop_back();
-      const PatchCluster& c = (*clusters_)[index];
-      if (!(highest_above(c.box, p) > in_plane_)) continue;
-      const double distance = std::sqrt(c.box.squaredExteriorDistance(x)) - radius_[p];
-      if (small_beside(c.size, distance) && link_cluster(p, index)) continue;
-      if (c.left >= 0) {
-        stack.push_back(c.left + 1);
-        stack.push_back(c.left);
-        continue;
-      }
-      for (int k = c.first; k < c.first + c.count; ++k) link_patches(p, clusters_->patch(k));
-    }
+  /// Patches p and q may see each other: distinct polygons, each in front of the other.
+  bool may_see(int p, int q) const {
+    if (p == q || solution_.patches[p].polygon == solution_.patches[q].polygon)
+      return false;  // a planar polygon does not see itself
+    return in_front(p, q) && in_front(q, p);
   }
-
+  /// Links patch p to what it sees: down the cluster tree from the root, a cluster small beside
+  /// its distance whose shadow rays agree is linked whole, a larger one is opened, and a leaf
+  /// cluster's patches are linked by link_patches; a cluster or patch too faint to be worth
+  /// opening is left out (deferred_), as long as all p leaves out stays within its budget
+  /// (hierarchical_linking.cpp).
+  void link_patch(int p);
+  /// link_patch's walk down from the clusters on `stack`.
+  void link_from(int p, std::vector<int>& stack);
+  /// Opens a deferred_ entry for patch p: a cluster's children go on `stack` (a leaf
+  /// cluster's patches are linked), a patch is linked.
+  void open(int p, int entry, std::vector<int>& stack);
+  /// What a deferred_ entry (cluster `entry`, or patch -1 - entry) may bring patch p at most:
+  /// its brightest leaf's radiosity times the form factor of its bounding sphere from the
+  /// nearest point of p's, (r / d)^2 for a sphere of radius r at distance d (1 where they
+  /// meet), an upper bound on the exact form factor of anything inside it, hidden or not.
+  /// Irradiance, not reflected light: a black receiver's absorption counts in the ledger (with
+  /// rho, a black sky's links were left out and its light counted as escaped). Largest channel.
+  double reach(int p, int entry) const;
+  /// Leaves `entry` out of p's links (deferred_) when its reach is within a kDeferredPieces-th
+  /// of p's budget.
+  bool defer(int p, int entry);
+  /// Opens p's brightest deferred entries until the reach of the rest is within its budget;
+  /// returns the number opened.
+  int settle(int p);
+  /// The brightest leaf radiosity of each patch and each cluster (per channel).
+  void find_brightest(const std::vector<Rgb>& radiosity);
+  /// Hands each patch's links down to its leaves (refine()): each leaf measures the patch's
+  /// links at its own centroid and weighs its cluster links there.
+  void hand_down(const std::vector<int>& patches);
   /// Links patch p to cluster `index` whole when a few shadow rays agree (all pass or all are
   /// blocked); false when they disagree and the cluster is to be opened.
-  bool link_cluster(int p, int index) {
-    const PatchCluster& c = (*clusters_)[index];
-    const Vec3& x = centroid_[p];
-    const Vec3 n = solution_.patches[p].normal;
-    Vec3 w = x - c.centre;
-    const double r = w.norm();
-    if (!(r > 0)) return false;
-    w /= r;
-    // The picks of the bins turned to the receiver, the bin it faces most first, in turn.
-    const std::array<double, kBins> toward = bin_weights(w);
-    std::array<int, kBins> bins_order{0, 1, 2, 3, 4, 5};
-    std::stable_sort(bins_order.begin(), bins_order.end(),
-                     [&](int a, int b) { return toward[a] > toward[b]; });
-    std::array<int, kClusterRays> samples;
-    int rays = 0;
-    for (int k = 0; k < kClusterRays && rays < kClusterRays; ++k) {
-      for (const int b : bins_order) {
-        if (!(toward[b] > 0) || rays == kClusterRays) continue;
-        const int q = c.turned[b][k];
-        if (q >= 0 &&
-            std::find(samples.begin(), samples.begin() + rays, q) == samples.begin() + rays)
-          samples[rays++] = q;
-      }
-    }
-    if (rays == 0) return true;  // no patch of it is turned to the receiver: no link
-    int passed = 0;
-    for (int k = 0; k < rays; ++k) {
-      const int q = samples[k];
-      const Vec3 d = centroid_[q] - x;
-      const double length = d.norm();
-      if (!(length > 2 * epsilon_)) {
-        ++passed;
-        continue;
-      }
-      passed += !caster_.occluded({x, d / length}, epsilon_, length - epsilon_);
-    }
-    if (passed != 0 && passed != rays) return false;
-    if (passed == 0) return true;  // nothing arrives: no link
-    const ClusterLink link{index, cluster_weights(index, x, n)};
-    if (std::all_of(link.weight.begin(), link.weight.end(), [](float v) { return v == 0; }))
-      return true;  // behind the receiver
-    cluster_links_[p].push_back(link);
-    return true;
-  }
-
+  bool link_cluster(int p, int index);
   /// Links patch p to patch q: at p's centroid when both are small beside their distance, else
   /// each live leaf of p to each of q's.
-  void link_patches(int p, int q) {
-    const Patch& rp = solution_.patches[p];
-    const Patch& sq = solution_.patches[q];
-    if (p == q || rp.polygon == sq.polygon) return;  // a planar polygon does not see itself
-    if (!in_front(p, q) || !in_front(q, p)) return;
-    const double distance = (centroid_[q] - centroid_[p]).norm() - radius_[p] - radius_[q];
-    if (small_beside(2 * std::max(radius_[p], radius_[q]), distance)) {
-      const Rgb f = rays_.visible_form_factor(centroid_[p], rp.normal, rp.polygon, sq,
-                                              stream_key(0, p, StreamKind::link, q));
-      if (f != Rgb::Zero()) {
-        patch_links_[p].push_back({q, f});
-      } else if (keep_blocked_) {
-        patch_blocked_[p].push_back(q);
-      }
-      return;
-    }
-    for (const int e : patch_leaves_[p]) {
-      const Element& el = solution_.elements[e];
-      for (const int s : patch_leaves_[q]) {
-        const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon,
-                                                solution_.element_as_patch(s),
-                                                stream_key(0, e, StreamKind::link, s));
-        if (f != Rgb::Zero()) {
-          element_links_[e].push_back({s, f});
-        } else if (keep_blocked_) {
-          element_blocked_[e].push_back(s);
-        }
-      }
-    }
-  }
+  void link_patches(int p, int q);
 
   /// The certified bound on the sweeps' own error, from the last sweep's change r: the sweeps
   /// are Jacobi's, B' = E + R F B with F the links' (scaled) gather, so B* - B' = R F (B* - B)
@@ -536,6 +515,14 @@ class HierarchicalSolver {
   std::vector<std::vector<SourceLink>> element_links_;
   /// Per element: the cluster links its patch handed down, weighed at its centroid.
   std::vector<std::vector<ClusterLink>> element_cluster_links_;
+  /// Per patch: the clusters (index) and patches (-1 - index) its linking left out, too
+  /// faint to open; together they may bring it at most defer_budget_ (what unshot light may
+  /// bring a leaf: --unshot times B_ref).
+  std::vector<std::vector<int>> deferred_;
+  const double defer_budget_ =
+      settings_.faint_share * settings_.unshot_fraction * reference_radiosity(scene_);
+  std::vector<Rgb> patch_brightest_, cluster_brightest_;  ///< find_brightest()'s
+  std::vector<char> handed_;         ///< Per patch: its links were handed down to its leaves
   std::vector<FluxBins> unit_flux_;  ///< Per cluster: its flux at a uniform radiosity of 1
   /// Where refinement may follow: the sources (as element links name them) and the patches
   /// that a link found hidden at its receiver's centroid. A piece of the receiver may see them

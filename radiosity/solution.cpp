@@ -1,5 +1,6 @@
 #include "radiosity/solution.h"
 
+#include <cmath>
 #include <string>
 
 #include "scene/error.h"
@@ -14,6 +15,7 @@ void SolverSettings::validate() const {
   if (refine_passes < 0 || refine_passes > 20) bad("refine_passes must be in [0, 20]");
   if (!(min_element_size > 0)) bad("min_element_size must be > 0");
   if (!(unshot_fraction > 0 && unshot_fraction < 1)) bad("unshot_fraction must be in (0, 1)");
+  if (!(faint_share >= 0 && std::isfinite(faint_share))) bad("faint_share must be finite, >= 0");
   if (max_shots < 0) bad("max_shots must be >= 0");
   if (visibility_samples < 1) bad("visibility_samples must be >= 1");
 }

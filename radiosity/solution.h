@@ -50,6 +50,13 @@ struct SolverSettings {
   /// false casts them all (the baseline the culling is measured against). Not saved in the
   /// solution file.
   bool shaft_culling = true;
+  /// Hierarchical: a patch's links leave out the sources too faint to matter (Hanrahan,
+  /// Salzman and Aupperle's BF refinement), as long as all it leaves out could bring it at most
+  /// this many times the unshot light, unshot_fraction times the scene's mean radiosity
+  /// (SolveStats::left_out_bound). 0 links every source by geometry alone, so that the links do
+  /// not depend on unshot_fraction: the tests of the links' own bound compare two stops of one
+  /// system. Not saved.
+  double faint_share = 1;
   /// Carry refracting objects (000 §4) as filters: light crosses each interface straight,
   /// unbent, passing its transmittance (with "fresnel", the Fresnel transmission at normal
   /// incidence, 1 - ((n - 1) / (n + 1))^2). A heuristic, measured in bench/results/
@@ -122,6 +129,11 @@ struct SolveStats {
   long long visibility_pairs = 0, unhidden_pairs = 0, hidden_pairs = 0;
   /// The hierarchical solver's links (0 for the progressive solver). Not saved.
   long long links = 0;
+  /// The hierarchical solver's sources left out of the links, too faint to be worth linking
+  /// (clusters and patches), and a certified bound on the irradiance they may bring any element
+  /// at the final radiosity [W/m^2, largest channel] (HierarchicalSolver::reach). Not saved.
+  long long left_out = 0;
+  double left_out_bound = 0;
 };
 
 /// A solved (or loaded) radiosity solution.

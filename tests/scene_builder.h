@@ -1,5 +1,6 @@
 #pragma once
 /// Building small scenes in code for tests: polygons go through the same validation as files.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,10 @@ class SceneBuilder {
     return static_cast<int>(scene_.materials.size()) - 1;
   }
   /// An axis-aligned box [lo, hi], its six faces' fronts facing out: one object.
-  void box(const Vec3& lo, const Vec3& hi, int material) {
+  void box(const Vec3& lo, const Vec3& hi, int material) { add_box(lo, hi, material, false); }
+  /// A closed room [lo, hi]: the box's six faces with their fronts facing in, one object.
+  void room(const Vec3& lo, const Vec3& hi, int material) { add_box(lo, hi, material, true); }
+  void add_box(const Vec3& lo, const Vec3& hi, int material, bool facing_in) {
     // Corner k has x = hi where bit 0 of k is set, y where bit 1 is, z where bit 2 is; each
     // face counter-clockwise seen from outside.
     const auto corner = [&](int k) {
@@ -39,8 +43,11 @@ class SceneBuilder {
                              {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     const int first = static_cast<int>(scene_.polygons.size());
     const int object = static_cast<int>(scene_.objects.size());
-    for (const auto& f : faces)
-      polygon({corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3])}, material);
+    for (const auto& f : faces) {
+      std::vector<Vec3> face{corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3])};
+      if (facing_in) std::reverse(face.begin(), face.end());
+      polygon(std::move(face), material);
+    }
     scene_.objects.resize(object + 1);
     scene_.objects[object].polygon_count = static_cast<int>(scene_.polygons.size()) - first;
     for (int p = first; p < static_cast<int>(scene_.polygons.size()); ++p)

@@ -1,0 +1,221 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "radiosity/hierarchical_state.h"
+#include "radiosity/random_stream.h"
+#include "radiosity/solver.h"
+
+namespace rad {
+
+void HierarchicalSolver::link_patch(int p) {
+  if (patch_leaves_[p].empty() || clusters_->empty()) return;
+  std::vector<int> stack{0};
+  link_from(p, stack);
+  settle(p);
+}
+
+void HierarchicalSolver::link_from(int p, std::vector<int>& stack) {
+  const Vec3& x = centroid_[p];
+  while (!stack.empty()) {
+    const int index = stack.back();
+    stack.pop_back();
+    const PatchCluster& c = (*clusters_)[index];
+    if (!(highest_above(c.box, p) > in_plane_)) continue;
+    const double distance = std::sqrt(c.box.squaredExteriorDistance(x)) - radius_[p];
+    if (small_beside(c.size, distance) && link_cluster(p, index)) continue;
+    if (!defer(p, index)) open(p, index, stack);
+  }
+}
+
+void HierarchicalSolver::open(int p, int entry, std::vector<int>& stack) {
+  if (entry < 0) {
+    link_patches(p, -1 - entry);
+    return;
+  }
+  const PatchCluster& c = (*clusters_)[entry];
+  if (c.left >= 0) {
+    stack.push_back(c.left + 1);
+    stack.push_back(c.left);
+    return;
+  }
+  for (int k = c.first; k < c.first + c.count; ++k) {
+    const int q = clusters_->patch(k);
+    if (may_see(p, q) && !defer(p, -1 - q)) link_patches(p, q);
+  }
+}
+
+double HierarchicalSolver::reach(int p, int entry) const {
+  Vec3 centre;
+  double radius;
+  const Rgb* brightest;
+  if (entry >= 0) {
+    const PatchCluster& c = (*clusters_)[entry];
+    centre = c.box.center();
+    radius = c.size / 2;
+    brightest = &cluster_brightest_[entry];
+  } else {
+    centre = centroid_[-1 - entry];
+    radius = radius_[-1 - entry];
+    brightest = &patch_brightest_[-1 - entry];
+  }
+  const double gap = (centre - centroid_[p]).norm() - radius_[p] - radius;
+  const double form_factor = gap > 0 ? std::pow(radius / (gap + radius), 2) : 1.0;
+  return form_factor * brightest->maxCoeff();
+}
+
+bool HierarchicalSolver::defer(int p, int entry) {
+  if (!(reach(p, entry) <= defer_budget_ / kDeferredPieces) || defer_budget_ == 0) return false;
+  deferred_[p].push_back(entry);
+  return true;
+}
+
+int HierarchicalSolver::settle(int p) {
+  int opened = 0;
+  for (;;) {
+    std::vector<std::pair<double, int>> reaches;
+    double total = 0;
+    for (const int entry : deferred_[p]) {
+      reaches.emplace_back(reach(p, entry), entry);
+      total += reaches.back().first;
+    }
+    if (total <= defer_budget_) return opened;
+    // The brightest first (by reach, then entry: the same for any thread count).
+    std::sort(reaches.begin(), reaches.end(), std::greater<>());
+    std::vector<int> stack;
+    deferred_[p].clear();
+    for (const auto& [brings, entry] : reaches) {
+      if (total > defer_budget_) {
+        total -= brings;
+        ++opened;
+        open(p, entry, stack);
+      } else {
+        deferred_[p].push_back(entry);
+      }
+    }
+    link_from(p, stack);
+  }
+}
+
+void HierarchicalSolver::find_brightest(const std::vector<Rgb>& radiosity) {
+  patch_brightest_.assign(solution_.patches.size(), Rgb::Zero());
+  for (size_t p = 0; p < patch_leaves_.size(); ++p) {
+    for (const int e : patch_leaves_[p])
+      patch_brightest_[p] = patch_brightest_[p].cwiseMax(radiosity[e]);
+  }
+  cluster_brightest_.assign(clusters_->size(), Rgb::Zero());
+  for (int i = clusters_->size(); i-- > 0;) {  // children after their parents
+    const PatchCluster& c = (*clusters_)[i];
+    Rgb& b = cluster_brightest_[i];
+    if (c.left >= 0) {
+      b = cluster_brightest_[c.left].cwiseMax(cluster_brightest_[c.left + 1]);
+      continue;
+    }
+    for (int k = c.first; k < c.first + c.count; ++k)
+      b = b.cwiseMax(patch_brightest_[clusters_->patch(k)]);
+  }
+}
+
+int HierarchicalSolver::open_deferred() {
+  find_brightest(radiosity_);
+  const size_t count = solution_.patches.size();
+  std::vector<int> opened(count, 0);
+  tbb::parallel_for(size_t(0), count, [&](size_t p) { opened[p] = settle(static_cast<int>(p)); });
+  std::vector<int> changed, handed;
+  for (size_t p = 0; p < count; ++p) {
+    if (opened[p] == 0) continue;
+    changed.push_back(static_cast<int>(p));
+    if (handed_[p]) handed.push_back(static_cast<int>(p));
+  }
+  if (changed.empty()) return 0;
+  hand_down(handed);
+  for (const int p : changed) patch_row_[p] = patch_row(p);
+  std::vector<int> leaves;
+  for (const int p : changed)
+    leaves.insert(leaves.end(), patch_leaves_[p].begin(), patch_leaves_[p].end());
+  tbb::parallel_for(size_t(0), leaves.size(),
+                    [&](size_t k) { row_scale_[leaves[k]] = scale_of(leaves[k]); });
+  count_links();
+  int total = 0;
+  for (const int n : opened) total += n;
+  return total;
+}
+
+bool HierarchicalSolver::link_cluster(int p, int index) {
+  const PatchCluster& c = (*clusters_)[index];
+  const Vec3& x = centroid_[p];
+  const Vec3 n = solution_.patches[p].normal;
+  Vec3 w = x - c.centre;
+  const double r = w.norm();
+  if (!(r > 0)) return false;
+  w /= r;
+  // The picks of the bins turned to the receiver, the bin it faces most first, in turn.
+  const std::array<double, kBins> toward = bin_weights(w);
+  std::array<int, kBins> bins_order{0, 1, 2, 3, 4, 5};
+  std::stable_sort(bins_order.begin(), bins_order.end(),
+                   [&](int a, int b) { return toward[a] > toward[b]; });
+  std::array<int, kClusterRays> samples;
+  int rays = 0;
+  for (int k = 0; k < kClusterRays && rays < kClusterRays; ++k) {
+    for (const int b : bins_order) {
+      if (!(toward[b] > 0) || rays == kClusterRays) continue;
+      const int q = c.turned[b][k];
+      if (q >= 0 && std::find(samples.begin(), samples.begin() + rays, q) == samples.begin() + rays)
+        samples[rays++] = q;
+    }
+  }
+  if (rays == 0) return true;  // no patch of it is turned to the receiver: no link
+  int passed = 0;
+  for (int k = 0; k < rays; ++k) {
+    const int q = samples[k];
+    const Vec3 d = centroid_[q] - x;
+    const double length = d.norm();
+    if (!(length > 2 * epsilon_)) {
+      ++passed;
+      continue;
+    }
+    passed += !caster_.occluded({x, d / length}, epsilon_, length - epsilon_);
+  }
+  if (passed != 0 && passed != rays) return false;
+  if (passed == 0) return true;  // nothing arrives: no link
+  const ClusterLink link{index, cluster_weights(index, x, n)};
+  if (std::all_of(link.weight.begin(), link.weight.end(), [](float v) { return v == 0; }))
+    return true;  // behind the receiver
+  cluster_links_[p].push_back(link);
+  return true;
+}
+
+void HierarchicalSolver::link_patches(int p, int q) {
+  if (!may_see(p, q)) return;
+  const Patch& rp = solution_.patches[p];
+  const Patch& sq = solution_.patches[q];
+  const double distance = (centroid_[q] - centroid_[p]).norm() - radius_[p] - radius_[q];
+  if (small_beside(2 * std::max(radius_[p], radius_[q]), distance)) {
+    const Rgb f = rays_.visible_form_factor(centroid_[p], rp.normal, rp.polygon, sq,
+                                            stream_key(0, p, StreamKind::link, q));
+    if (f != Rgb::Zero()) {
+      patch_links_[p].push_back({q, f});
+    } else if (keep_blocked_) {
+      patch_blocked_[p].push_back(q);
+    }
+    return;
+  }
+  for (const int e : patch_leaves_[p]) {
+    const Element& el = solution_.elements[e];
+    for (const int s : patch_leaves_[q]) {
+      const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon,
+                                              solution_.element_as_patch(s),
+                                              stream_key(0, e, StreamKind::link, s));
+      if (f != Rgb::Zero()) {
+        element_links_[e].push_back({s, f});
+      } else if (keep_blocked_) {
+        element_blocked_[e].push_back(s);
+      }
+    }
+  }
+}
+
+}  // namespace rad
