@@ -2,7 +2,7 @@
 # The two solvers on the IFC house (the scene bench/ifc_house.sh makes from Debian's
 # assimp-testmodels), one after the other in the same run, at coarse settings (one element a
 # patch, no refinement, --unshot 0.02): wall seconds, peak memory, links and the ledger's
-# escaped share. Writes bench/results/ifc_house_solvers.md. About 7 minutes on 2 cores.
+# escaped share. Writes bench/results/ifc_house_solvers.md. About 2 minutes on 2 cores.
 # Needs: apt-get install assimp-utils assimp-testmodels.
 # Usage: bash bench/ifc_house_solvers.sh [BUILD_DIR]
 set -euo pipefail

@@ -149,6 +149,8 @@ void add_solve_command(CLI::App& app, Run& run) {
       "--solver hierarchical: hierarchical radiosity with clustering (Hanrahan, Salzman,\n"
       "Aupperle 1991; Smits, Arvo, Greenberg 1994) on the same mesh: each patch is linked to\n"
       "whole clusters of patches far from it, to patches, or element by element near it;\n"
+      "sources too faint to matter are left out, as long as all a patch leaves out may bring\n"
+      "it at most --unshot of the mean radiosity, and opened as the light reaches them.\n"
       "Jacobi sweeps gather over the links until the last sweep's change is below --unshot of\n"
       "the emitted power (--max-shots counts sweeps); then --refine-passes passes split the\n"
       "elements off their neighbours' plane (near a contact: where any corner is), each new\n"
@@ -194,7 +196,8 @@ void add_solve_command(CLI::App& app, Run& run) {
       ->capture_default_str();
   sub->add_option("--unshot", s.unshot_fraction,
                   "Stop when the unshot power (hierarchical: the last sweep's change) is below "
-                  "this fraction of the emitted")
+                  "this fraction of the emitted (hierarchical: and leave out of the links the "
+                  "sources that may bring a patch at most this fraction of the mean radiosity)")
       ->check(CLI::Range(1e-12, 0.999999))
       ->check(kFinite)
       ->capture_default_str();
