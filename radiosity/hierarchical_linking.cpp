@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <utility>
 #include <vector>
 
@@ -63,7 +62,8 @@ double HierarchicalSolver::reach(int p, int entry) const {
     brightest = &patch_brightest_[-1 - entry];
   }
   const double gap = (centre - centroid_[p]).norm() - radius_[p] - radius;
-  const double form_factor = gap > 0 ? std::pow(radius / (gap + radius), 2) : 1.0;
+  const double ratio = radius / (gap + radius);
+  const double form_factor = gap > 0 ? ratio * ratio : 1.0;
   return form_factor * brightest->maxCoeff();
 }
 
@@ -74,30 +74,38 @@ bool HierarchicalSolver::defer(int p, int entry) {
 }
 
 int HierarchicalSolver::settle(int p) {
-  int opened = 0;
-  for (;;) {
-    std::vector<std::pair<double, int>> reaches;
-    double total = 0;
-    for (const int entry : deferred_[p]) {
-      reaches.emplace_back(reach(p, entry), entry);
-      total += reaches.back().first;
+  std::vector<int>& deferred = deferred_[p];
+  // A heap of (reach, entry): the brightest on top, ties by entry (the same for any thread
+  // count).
+  std::vector<std::pair<double, int>> heap;
+  double total = 0;
+  const auto take = [&] {
+    for (const int entry : deferred) {
+      heap.emplace_back(reach(p, entry), entry);
+      total += heap.back().first;
+      std::push_heap(heap.begin(), heap.end());
     }
-    if (total <= defer_budget_) return opened;
-    // The brightest first (by reach, then entry: the same for any thread count).
-    std::sort(reaches.begin(), reaches.end(), std::greater<>());
-    std::vector<int> stack;
-    deferred_[p].clear();
-    for (const auto& [brings, entry] : reaches) {
-      if (total > defer_budget_) {
-        total -= brings;
-        ++opened;
-        open(p, entry, stack);
-      } else {
-        deferred_[p].push_back(entry);
-      }
-    }
-    link_from(p, stack);
+    deferred.clear();
+  };
+  take();
+  if (total <= defer_budget_) {
+    for (const auto& [brings, entry] : heap) deferred.push_back(entry);
+    return 0;
   }
+  int opened = 0;
+  std::vector<int> stack;
+  while (total > defer_budget_ && !heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end());
+    const auto [brings, entry] = heap.back();
+    heap.pop_back();
+    total -= brings;
+    ++opened;
+    open(p, entry, stack);
+    link_from(p, stack);
+    take();  // what the opening left out in turn
+  }
+  for (const auto& [brings, entry] : heap) deferred.push_back(entry);
+  return opened;
 }
 
 void HierarchicalSolver::find_brightest(const std::vector<Rgb>& radiosity) {

@@ -12,6 +12,12 @@ namespace rad {
 
 namespace {
 
+/// How many polygons in a shaft's box the scan looks at before it gives up (may_be_hidden).
+/// Measured on the IFC house's coarse hierarchical solve, the same bytes: no cap 35.5 s, 256
+/// 25.2 s, 32 24.0 s (one run each). In a furnished room of the building it gives up where
+/// the whole scan would have cleared 0.02% of the pairs: the same bytes, the same time.
+constexpr int kMostLookedAt = 256;
+
 BoxTree<3> polygon_boxes(const Scene& scene) {
   std::vector<Eigen::AlignedBox3d> boxes;
   for (const Polygon& p : scene.polygons) {
@@ -39,8 +45,14 @@ bool ShadowCulling::may_be_hidden(const Vec3& x, int receiver, const std::vector
   hull.extend(x);
   std::optional<Shaft> shaft;  // built only for a polygon in its box that no plane separates
   // Whether the answer is true does not depend on the order the polygons are looked at in.
+  int looked_at = 0;
   return boxes_.any_of(hull, [&](int p) {
     if (p == receiver || p == shooter) return false;
+    // Past kMostLookedAt polygons in its box, the scan gives up and says "may be hidden": the
+    // rays then decide, and give what the scan would have (all pass where nothing is between).
+    // On the IFC house, whose shafts' boxes hold thousands of small triangles and nearly every
+    // pair has something between, the scans were a fifth of a solve.
+    if (++looked_at > kMostLookedAt) return true;
     const Polygon& polygon = scene_.polygons[p];
     const Vec3& origin = polygon.vertices.front();
     // x and every corner strictly on one side: no segment between them meets the plane.
