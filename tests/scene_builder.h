@@ -33,26 +33,6 @@ class SceneBuilder {
   void box(const Vec3& lo, const Vec3& hi, int material) { add_box(lo, hi, material, false); }
   /// A closed room [lo, hi]: the box's six faces with their fronts facing in, one object.
   void room(const Vec3& lo, const Vec3& hi, int material) { add_box(lo, hi, material, true); }
-  void add_box(const Vec3& lo, const Vec3& hi, int material, bool facing_in) {
-    // Corner k has x = hi where bit 0 of k is set, y where bit 1 is, z where bit 2 is; each
-    // face counter-clockwise seen from outside.
-    const auto corner = [&](int k) {
-      return Vec3(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
-    };
-    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    const int first = static_cast<int>(scene_.polygons.size());
-    const int object = static_cast<int>(scene_.objects.size());
-    for (const auto& f : faces) {
-      std::vector<Vec3> face{corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3])};
-      if (facing_in) std::reverse(face.begin(), face.end());
-      polygon(std::move(face), material);
-    }
-    scene_.objects.resize(object + 1);
-    scene_.objects[object].polygon_count = static_cast<int>(scene_.polygons.size()) - first;
-    for (int p = first; p < static_cast<int>(scene_.polygons.size()); ++p)
-      scene_.polygons[p].object = object;
-  }
   /// Adds a polygon (counter-clockwise from its front) and returns its index.
   int polygon(std::vector<Vec3> vertices, int material) {
     const int object = static_cast<int>(scene_.objects.size());
@@ -76,6 +56,27 @@ class SceneBuilder {
   Scene& scene() { return scene_; }
 
  private:
+  void add_box(const Vec3& lo, const Vec3& hi, int material, bool facing_in) {
+    // Corner k has x = hi where bit 0 of k is set, y where bit 1 is, z where bit 2 is; each
+    // face counter-clockwise seen from outside.
+    const auto corner = [&](int k) {
+      return Vec3(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+    };
+    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const int first = static_cast<int>(scene_.polygons.size());
+    const int object = static_cast<int>(scene_.objects.size());
+    for (const auto& f : faces) {
+      std::vector<Vec3> face{corner(f[0]), corner(f[1]), corner(f[2]), corner(f[3])};
+      if (facing_in) std::reverse(face.begin(), face.end());
+      polygon(std::move(face), material);
+    }
+    scene_.objects.resize(object + 1);
+    scene_.objects[object].polygon_count = static_cast<int>(scene_.polygons.size()) - first;
+    for (int p = first; p < static_cast<int>(scene_.polygons.size()); ++p)
+      scene_.polygons[p].object = object;
+  }
+
   Scene scene_;
 };
 

@@ -249,5 +249,40 @@ TEST(ShadowCulling, AWallHidesAShooterWholeOnlyWhereItCoversItsCornersFromThePoi
   }
 }
 
+TEST(ShadowCulling, PastItsCapTheScanLeavesThePairToTheRaysWhichLetAllThrough) {
+  // A point on a floor and a small lamp above it to the side; beside the shaft between them,
+  // inside its box, a crowd of small upright triangles whose planes do not part the point from
+  // the lamp (each one the scan must look at, none in the way). Below the scan's cap it clears
+  // the pair; above it, it gives up ("may be hidden", always safe), and the shadow rays then
+  // find what the scan would have: the lamp's whole form factor, the same double.
+  for (const int crowd : {200, 300}) {
+    test::SceneBuilder b;
+    const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
+    const int floor = b.rectangle(-0.5, 0.5, -0.5, 0.5, 0, false, grey);
+    const int lamp = b.rectangle(1.9, 2.1, -0.1, 0.1, 2, true, grey);
+    for (int k = 0; k < crowd; ++k) {
+      const double x0 = 1.0 + 0.003 * k, y = 0.05;
+      b.polygon({{x0, y, 0.2}, {x0 + 0.05, y, 0.2}, {x0, y, 0.25}}, grey);
+    }
+    const Scene& scene = b.scene();
+    const double epsilon = 1e-5 * scene.bounds().diagonal();
+    const ShadowCulling culling(scene, epsilon);
+    Patch shooter;
+    shooter.polygon = lamp;
+    shooter.corners = scene.polygons[lamp].vertices;
+    shooter.normal = scene.polygons[lamp].normal;
+    shooter.area = 0.04;
+    const Vec3 x(0, 0, 0), up(0, 0, 1);
+    EXPECT_EQ(culling.may_be_hidden(x, floor, shooter.corners, lamp), crowd > 256)
+        << crowd << " triangles beside the shaft";
+    const RayCaster caster(scene);
+    const Shooter rays(caster, SolverSettings{}, epsilon);
+    const double whole = unblocked_form_factor(x, up, shooter.corners, shooter.normal);
+    EXPECT_GT(whole, 0);
+    EXPECT_EQ(rays.visible_form_factor(x, up, floor, shooter, 7), Rgb::Constant(whole))
+        << crowd << " triangles beside the shaft";
+  }
+}
+
 }  // namespace
 }  // namespace rad
