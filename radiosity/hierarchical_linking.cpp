@@ -213,9 +213,12 @@ void HierarchicalSolver::link_patches(int p, int q) {
   }
   for (const int e : patch_leaves_[p]) {
     const Element& el = solution_.elements[e];
-    for (const int s : patch_leaves_[q]) {
-      const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon,
-                                              solution_.element_as_patch(s),
+    // Past q's near field, e takes q whole: its exact form factor at e's centroid, at q's
+    // mean radiosity.
+    const bool whole = !in_source_near_field(el.centroid, {centroid_[q], radius_[q]});
+    const std::vector<int> one{-1 - q};
+    for (const int s : whole ? one : patch_leaves_[q]) {
+      const Rgb f = rays_.visible_form_factor(el.centroid, rp.normal, el.polygon, source_patch(s),
                                               stream_key(0, e, StreamKind::link, s));
       if (f != Rgb::Zero()) {
         element_links_[e].push_back({s, f});

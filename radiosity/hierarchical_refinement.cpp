@@ -1,11 +1,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <vector>
 
 #include "radiosity/hierarchical_state.h"
 #include "radiosity/mesher.h"
+#include "radiosity/near_field.h"
 #include "radiosity/patch_mesh.h"
 #include "radiosity/random_stream.h"
 #include "radiosity/refinement_limit.h"
@@ -195,7 +197,8 @@ bool HierarchicalSolver::link_down(int e, const SourceLink& link, std::vector<So
     const Vec3& centre = s < 0 ? centroid_[-1 - s] : elements[s].centroid;
     const double radius =
         s < 0 ? radius_[-1 - s] : bounding_sphere(elements[s].corners, centre).radius;
-    if (small_beside(2 * radius, (centre - el.centroid).norm() - radius)) pieces.clear();
+    const double area = s < 0 ? solution_.patches[-1 - s].area : elements[s].area;
+    if (!needs_pieces(e, {centre, radius}, area, pieces)) pieces.clear();
   }
   if (pieces.empty()) {
     out.push_back(link);
@@ -214,6 +217,30 @@ bool HierarchicalSolver::link_down(int e, const SourceLink& link, std::vector<So
     }
   }
   return true;
+}
+
+bool HierarchicalSolver::needs_pieces(int e, const Sphere& source, double area,
+                                      const std::vector<int>& pieces) const {
+  const Element& el = solution_.elements[e];
+  if (in_source_near_field(el.centroid, source)) return true;
+  const double rho = reflectance(e).maxCoeff();
+  if (!(rho > 0)) return false;
+  Rgb least = Rgb::Constant(std::numeric_limits<double>::infinity()), largest = -least;
+  for (const int c : pieces) {
+    const bool dead = solution_.elements[c].is_leaf()
+                          ? buried_[c] != 0
+                          : c < static_cast<int>(live_below_.size()) && live_below_[c] == 0;
+    if (dead) continue;  // (its radiosity is no light's)
+    least = least.cwiseMin(radiosity_[c]);
+    largest = largest.cwiseMax(radiosity_[c]);
+  }
+  const double spread = (largest - least).maxCoeff();
+  // (The smallest limit e could have: the one near a contact.)
+  const double tolerated =
+      NearField::limit_share *
+      refinement_limit(settings_.refine_threshold, reference_, radiosity_[e].maxCoeff(), true) /
+      rho;
+  return NearField::needs_pieces(el.centroid, source, area, spread, tolerated);
 }
 
 void HierarchicalSolver::drop_faint_hidden(int e, double reference) {
