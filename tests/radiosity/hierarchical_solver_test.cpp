@@ -175,7 +175,9 @@ TEST(HierarchicalSolver, AClosedRoomAbsorbsAllOfAPointLightsPower) {
   // leaves, D = sum I cos / r^2 A at their centroids (computed here; 4 pi I to the midpoint
   // rule), however many bounces it takes (measured: within 0.1% of D in every channel, D
   // 0.8% above 4 pi I at this mesh). A light left out of the gather, or counted on a leaf's
-  // radiosity without its reflection, breaks it by its whole share.
+  // radiosity without its reflection, breaks it by its whole share. So does a leaf taking a
+  // near source whole, at its mean (kSourceRadii): at 3 radii blue absorbs 1.6% too little,
+  // at 5 radii 0.36%.
   Scene cube = load_scene(kScenes / "closed-cube/scene.json");
   cube.materials[0].reflectance = Rgb(0.2, 0.5, 0.8);
   cube.materials[0].emission = Rgb::Zero();
