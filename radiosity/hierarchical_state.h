@@ -42,7 +42,7 @@ inline bool small_beside(double size, double gap) { return gap > 0 && size < kOp
 /// light (the test AClosedRoomAbsorbsAllOfAPointLightsPower), the walls absorb 1.6% less than
 /// the light delivers (blue, rho 0.8) at 3 radii (the progressive solver's near field), 0.36%
 /// less at 5, 0.003% at 7 and 0.1% more at 9 (link_patches' opening test, the rule before);
-/// on the Cornell box 7 makes 10.5 million links against 13.9 at 9, 6.1 at 3, for the same
+/// on the Cornell box 7 makes 10.6 million links against 13.9 at 9, 6.1 at 3, for the same
 /// error at the accuracy points (docs/algorithms.md).
 inline constexpr double kSourceRadii = 7;
 inline bool in_source_near_field(const Vec3& x, const Sphere& source) {
