@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -13,11 +15,12 @@ namespace rad {
 void HierarchicalSolver::link_patch(int p) {
   if (patch_leaves_[p].empty() || clusters_->empty()) return;
   std::vector<int> stack{0};
-  link_from(p, stack);
+  Blockers blockers = enclosing(p);
+  link_from(p, stack, blockers);
   settle(p);
 }
 
-void HierarchicalSolver::link_from(int p, std::vector<int>& stack) {
+void HierarchicalSolver::link_from(int p, std::vector<int>& stack, Blockers& blockers) {
   const Vec3& x = centroid_[p];
   while (!stack.empty()) {
     const int index = stack.back();
@@ -25,12 +28,62 @@ void HierarchicalSolver::link_from(int p, std::vector<int>& stack) {
     const PatchCluster& c = (*clusters_)[index];
     if (!(highest_above(c.box, p) > in_plane_)) continue;
     const double distance = std::sqrt(c.box.squaredExteriorDistance(x)) - radius_[p];
+    if (distance > 0) {  // (a box that meets p's bounding sphere is not worth the test)
+      std::array<Vec3, 8> corners;
+      for (int k = 0; k < 8; ++k) corners[k] = c.box.corner(Eigen::AlignedBox3d::CornerType(k));
+      if (hidden_whole(corners, c.box, blockers)) continue;
+    }
     if (small_beside(c.size, distance) && link_cluster(p, index)) continue;
-    if (!defer(p, index)) open(p, index, stack);
+    if (!defer(p, index)) open(p, index, stack, blockers);
   }
 }
 
-void HierarchicalSolver::open(int p, int entry, std::vector<int>& stack) {
+HierarchicalSolver::Blockers HierarchicalSolver::enclosing(int p) const {
+  Blockers blockers;
+  // The points of p that will ever gather through its links: its leaves' centroids, or, where
+  // refinement may split them, anywhere on it (the hull of its corners).
+  if (keep_blocked_) {
+    blockers.from = solution_.patches[p].corners;
+  } else {
+    for (const int e : patch_leaves_[p]) blockers.from.push_back(solution_.elements[e].centroid);
+  }
+  if (blockers.from.empty()) return blockers;
+  for (int k = 0; k < 27; ++k) {  // the 26 directions to a cube's corners, edges and faces
+    const Vec3 d(k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1);
+    if (k == 13) continue;  // (its centre)
+    const std::optional<Hit> hit = caster_.closest_hit({centroid_[p], d.normalized()}, epsilon_);
+    if (!hit || hit->polygon == solution_.patches[p].polygon) continue;
+    std::vector<Blocker>& found = blockers.polygons;
+    if (std::any_of(found.begin(), found.end(),
+                    [&](const Blocker& b) { return b.polygon == hit->polygon; }))
+      continue;
+    // Its plane turned so that p's gathering points lie in front.
+    const Polygon& polygon = scene_.polygons[hit->polygon];
+    const double sign = polygon.normal.dot(blockers.from[0] - polygon.vertices[0]) > 0 ? 1 : -1;
+    found.push_back(
+        {hit->polygon, sign * polygon.normal, sign * polygon.normal.dot(polygon.vertices[0])});
+  }
+  return blockers;
+}
+
+bool HierarchicalSolver::hidden_whole(std::span<const Vec3> to, const Eigen::AlignedBox3d& box,
+                                      Blockers& blockers) const {
+  std::vector<Blocker>& polygons = blockers.polygons;
+  const Vec3 centre = box.center();
+  const Vec3 half = box.sizes() / 2;
+  for (auto b = polygons.begin(); b != polygons.end(); ++b) {
+    // A quick look first: the box's highest point over the blocker's plane must lie behind it
+    // (for a cluster, what Shooter::hides_between asks of its corners; for a patch, a little
+    // more).
+    if (!(b->normal.dot(centre) + b->normal.cwiseAbs().dot(half) - b->offset < -epsilon_)) continue;
+    if (!rays_.hides_between(blockers.from, to, b->polygon)) continue;
+    std::rotate(polygons.begin(), b, b + 1);  // the last that hid something first
+    return true;
+  }
+  return false;
+}
+
+void HierarchicalSolver::open(int p, int entry, std::vector<int>& stack, Blockers& blockers) {
   if (entry < 0) {
     link_patches(p, -1 - entry);
     return;
@@ -43,7 +96,11 @@ void HierarchicalSolver::open(int p, int entry, std::vector<int>& stack) {
   }
   for (int k = c.first; k < c.first + c.count; ++k) {
     const int q = clusters_->patch(k);
-    if (may_see(p, q) && !defer(p, -1 - q)) link_patches(p, q);
+    if (!may_see(p, q)) continue;
+    const std::vector<Vec3>& corners = solution_.patches[q].corners;
+    Eigen::AlignedBox3d box;
+    for (const Vec3& corner : corners) box.extend(corner);
+    if (!hidden_whole(corners, box, blockers) && !defer(p, -1 - q)) link_patches(p, q);
   }
 }
 
@@ -94,14 +151,15 @@ int HierarchicalSolver::settle(int p) {
   }
   int opened = 0;
   std::vector<int> stack;
+  Blockers blockers = enclosing(p);
   while (total > defer_budget_ && !heap.empty()) {
     std::pop_heap(heap.begin(), heap.end());
     const auto [brings, entry] = heap.back();
     heap.pop_back();
     total -= brings;
     ++opened;
-    open(p, entry, stack);
-    link_from(p, stack);
+    open(p, entry, stack, blockers);
+    link_from(p, stack, blockers);
     take();  // what the opening left out in turn
   }
   for (const auto& [brings, entry] : heap) deferred.push_back(entry);

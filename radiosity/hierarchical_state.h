@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -468,11 +469,34 @@ class HierarchicalSolver {
   /// opening is left out (deferred_), as long as all p leaves out stays within its budget
   /// (hierarchical_linking.cpp).
   void link_patch(int p);
+  /// What may hide a cluster or a patch from a receiver patch whole: the points of it that
+  /// gather through its links, and the polygons that enclose it, the last that hid something
+  /// first.
+  struct Blocker {
+    int polygon;
+    Vec3 normal;  ///< The polygon's, turned to the gathering points: they lie in front
+    double offset;
+  };
+  struct Blockers {
+    std::vector<Vec3> from;
+    std::vector<Blocker> polygons;
+  };
+  /// Patch p's Blockers: its leaves' centroids (anywhere on it where refinement may split
+  /// them), and the polygons rays from its centroid meet first along the six axis directions
+  /// (a room's floor, ceiling and walls).
+  Blockers enclosing(int p) const;
+  /// True when one of `blockers` hides the hull of the points `to` (a cluster's box, a patch;
+  /// `box` bounds them) from every point that gathers (Shooter::hides_between): every shadow ray
+  /// would be blocked, so what is inside brings exactly nothing, and is neither linked, nor opened,
+  /// nor left out. Without it a storey's receivers open the clusters of the storeys above and
+  /// below down to their patches, which the slabs hide (bench/results/building_profile.md).
+  bool hidden_whole(std::span<const Vec3> to, const Eigen::AlignedBox3d& box,
+                    Blockers& blockers) const;
   /// link_patch's walk down from the clusters on `stack`.
-  void link_from(int p, std::vector<int>& stack);
+  void link_from(int p, std::vector<int>& stack, Blockers& blockers);
   /// Opens a deferred_ entry for patch p: a cluster's children go on `stack` (a leaf
   /// cluster's patches are linked), a patch is linked.
-  void open(int p, int entry, std::vector<int>& stack);
+  void open(int p, int entry, std::vector<int>& stack, Blockers& blockers);
   /// What a deferred_ entry (cluster `entry`, or patch -1 - entry) may bring patch p at most:
   /// its brightest leaf's radiosity times the form factor of its bounding sphere from the
   /// nearest point of p's, (r / d)^2 for a sphere of radius r at distance d (1 where they

@@ -1,6 +1,7 @@
 #include "radiosity/shooter.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -264,25 +265,52 @@ bool Shooter::something_on_the_way(const Vec3& x, int polygon, const Patch& shoo
 }
 
 bool Shooter::hides_all(const Vec3& x, const Patch& shooter, int blocker) const {
-  if (!solid_convex_[blocker]) return false;
+  return hides_between(std::span<const Vec3>(&x, 1), shooter.corners, blocker);
+}
+
+bool Shooter::hides_between(std::span<const Vec3> from, std::span<const Vec3> to,
+                            int blocker) const {
+  if (!solid_convex_[blocker] || from.empty()) return false;
   const Polygon& wall = caster_.scene().polygons[blocker];
   const Vec3& origin = wall.vertices[0];
-  const double h_x = wall.normal.dot(x - origin);
-  if (!(std::abs(h_x) > epsilon_)) return false;
+  const auto height = [&](const Vec3& y) { return wall.normal.dot(y - origin); };
+  const double side = height(from[0]) > 0 ? 1.0 : -1.0;
+  // Every point of `from` strictly on one side, every point of `to` on the other, each by
+  // more than epsilon.
+  for (const Vec3& a : from) {
+    if (!(side * height(a) > epsilon_)) return false;
+  }
+  for (const Vec3& b : to) {
+    if (!(-side * height(b) > epsilon_)) return false;
+  }
+  // Each edge's inward direction (counter-clockwise about the normal: normal x edge points
+  // inward) and epsilon's inset along it.
+  struct Edge {
+    Vec3 vertex, inward;
+    double inset;
+  };
+  constexpr size_t kHeld = 8;  // (a quad's, a slab's: no allocation)
+  std::array<Edge, kHeld> held;
+  std::vector<Edge> more;
   const size_t n = wall.vertices.size();
-  for (const Vec3& corner : shooter.corners) {
-    const double h_c = wall.normal.dot(corner - origin);
-    // The corner strictly on the other side, by more than epsilon.
-    if (!(h_x > 0 ? h_c < -epsilon_ : h_c > epsilon_)) return false;
-    const Vec3 crossing = x + (h_x / (h_x - h_c)) * (corner - x);
-    for (size_t i = 0; i < n; ++i) {
-      const Vec3& a = wall.vertices[i];
-      const Vec3 edge = wall.vertices[(i + 1) % n] - a;
-      // Counter-clockwise about the normal: normal x edge points inward.
-      const Vec3 inward = wall.normal.cross(edge);
-      const double length = inward.norm();
-      if (!(length > 0)) continue;  // a repeated vertex: no edge
-      if (!(inward.dot(crossing - a) > epsilon_ * length)) return false;
+  if (n > kHeld) more.resize(n);
+  Edge* edges = n > kHeld ? more.data() : held.data();
+  size_t edge_count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& v = wall.vertices[i];
+    const Vec3 inward = wall.normal.cross(wall.vertices[(i + 1) % n] - v);
+    const double inset = epsilon_ * inward.norm();
+    if (inset > 0) edges[edge_count++] = {v, inward, inset};  // (a repeated vertex: no edge)
+  }
+  // The crossing of each segment between them with the blocker's plane, inside every edge by
+  // more than epsilon.
+  for (const Vec3& a : from) {
+    const double h_a = height(a);
+    for (const Vec3& b : to) {
+      const Vec3 crossing = a + (h_a / (h_a - height(b))) * (b - a);
+      for (size_t i = 0; i < edge_count; ++i) {
+        if (!(edges[i].inward.dot(crossing - edges[i].vertex) > edges[i].inset)) return false;
+      }
     }
   }
   return true;

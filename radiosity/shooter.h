@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -68,19 +69,24 @@ class Shooter {
                             int* blocker = nullptr) const;
 
   /// True when polygon `blocker` alone hides the whole of the shooter from x, so that every
-  /// shadow ray would be blocked and the visible fraction is exactly 0 without casting one:
-  /// the blocker is opaque and convex, its plane has x on one side and every corner of the
-  /// shooter on the other (each by more than epsilon), and the segment from x to each corner
-  /// crosses it more than epsilon inside its edges. Proof: the shooter lies in the hull of
-  /// its corners; the segments from x to the points of that hull meet the blocker's plane in
-  /// the hull of the corners' crossings (a central projection from x, defined on all of them
-  /// since the plane separates x from each, maps segments to segments and so a hull to the
-  /// hull of the images); that hull lies inside the convex blocker, inset by epsilon, as its
-  /// corners do. So each shadow ray meets the blocker's interior, farther than epsilon from
-  /// both of its ends, where the caster's watertight test finds it (the same answer as the
-  /// rays: the solution's bytes do not change). A wall between two rooms hides most pairs of a
-  /// building this way, and the rays were most of its solve.
+  /// shadow ray would be blocked and the visible fraction is exactly 0 without casting one
+  /// (hides_between() from the one point x to the shooter's corners). A wall between two rooms
+  /// hides most pairs of a building this way, and the rays were most of its solve.
   bool hides_all(const Vec3& x, const Patch& shooter, int blocker) const;
+  /// True when polygon `blocker` alone hides every point of the hull of `to` from every point
+  /// of the hull of `from`: the blocker is opaque and convex, its plane has every point of
+  /// `from` on one side and every point of `to` on the other (each by more than epsilon), and
+  /// the segment from each point of `from` to each of `to` crosses it more than epsilon inside
+  /// its edges. Proof: for a fixed end b in hull(to), the segments from the points of
+  /// hull(from) meet the blocker's plane in the hull of their crossings from `from`'s points
+  /// (a central projection from b, defined on all of them since the plane separates b from
+  /// each, maps segments to segments and so a hull to the hull of the images); the crossing
+  /// from a point a of `from` to b lies, by the same argument from a, in the hull of a's
+  /// crossings to `to`'s points. So every crossing lies in the hull of the crossings of the
+  /// pairs of points, inside the convex blocker inset by epsilon, as those are. Each shadow
+  /// ray between the two hulls then meets the blocker's interior, farther than epsilon from
+  /// both of its ends, where the caster's watertight test finds it.
+  bool hides_between(std::span<const Vec3> from, std::span<const Vec3> to, int blocker) const;
 
   /// Whether the scene has mirror chains whose images a receiver may see the shooter in (then
   /// a receiver behind the shooter's plane can still receive from it).

@@ -1,8 +1,8 @@
 // The hierarchical solver (radiosity/hierarchical_solver.h): the furnace's closed form, the
 // progressive solver as its peer on the Cornell box, a far cluster and a point light against
-// closed forms, a closed room's ledger, the same bytes for any thread count, and the scenes it
-// does not carry yet. (Its bound against the same links swept further:
-// tests/radiosity/error_bound_test.cpp, with the progressive solver's.)
+// closed forms, a closed room's ledger, a slab that hides a room whole, the same bytes for any
+// thread count, and the scenes it does not carry yet. (Its bound against the same links swept
+// further: tests/radiosity/error_bound_test.cpp, with the progressive solver's.)
 #include "radiosity/hierarchical_solver.h"
 
 #include <gtest/gtest.h>
@@ -249,6 +249,49 @@ TEST(HierarchicalSolver, ADarkClosedRoomTakesNoLinksAndChangesNothingBesideIt) {
   }
   EXPECT_GT(lit, 0.01);
   EXPECT_EQ(dark, 0.0);
+  EXPECT_LT(difference, 1e-9 * lit);
+}
+
+TEST(HierarchicalSolver, ASlabHidesTheRoomAboveWholeAndTheLightStaysWhereItWas) {
+  // Two closed unit rooms, one above the other with a slab's gap between them, rho 0.5, a
+  // point light in each: no light passes between them. Linking drops what one polygon hides
+  // from every point that gathers (HierarchicalSolver::hidden_whole): the lower room's ceiling
+  // hides the upper room from the lower room's leaves but those on its walls (their centroids
+  // lie in the walls' planes, and so do the segments to the upper room's walls' corners, along
+  // the ceiling's edges), and the upper room's floor the lower room from the upper room's. So
+  // each room's leaves measure few pairs in the other. Measured: the two rooms 2.07 times the
+  // pairs of the lower one alone, 2.35 times without the test. Each room's light stays the same
+  // as with the other room away.
+  const auto scene = [](bool upper_room) {
+    test::SceneBuilder b;
+    const int wall = b.material("wall", Rgb::Constant(0.5), Rgb::Zero());
+    b.room(Vec3(0, 0, 0), Vec3(1, 1, 1), wall);
+    if (upper_room) {
+      b.room(Vec3(0, 0, 1.1), Vec3(1, 1, 2.1), wall);
+      b.scene().lights.push_back({Vec3(0.5, 0.5, 1.7), Rgb::Ones()});
+    } else {
+      const int black = b.material("black", Rgb::Zero(), Rgb::Zero());
+      b.polygon({{1, 1, 2.1}, {1, 0.99, 2.1}, {1, 0.99, 2.09}}, black);
+    }
+    b.scene().lights.push_back({Vec3(0.5, 0.5, 0.6), Rgb::Ones()});
+    return b.scene();
+  };
+  SolverSettings settings;
+  settings.refine_threshold = 0;
+  const Solution alone = solve_with(scene(false), settings, kHierarchical);
+  const Solution both = solve_with(scene(true), settings, kHierarchical);
+  std::cout << "two rooms stacked: " << both.stats.visibility_pairs << " pairs measured, "
+            << alone.stats.visibility_pairs << " for the lower room alone\n";
+  EXPECT_LT(both.stats.visibility_pairs, 2.15 * alone.stats.visibility_pairs);
+  double difference = 0, lit = 0;
+  for (const int e : alone.leaves()) {
+    const Element& el = alone.elements[e];
+    if (el.centroid.z() > 1.05) continue;  // (the marker)
+    ASSERT_EQ(el.centroid, both.elements[e].centroid);
+    lit = std::max(lit, el.radiosity.maxCoeff());
+    difference =
+        std::max(difference, (el.radiosity - both.elements[e].radiosity).cwiseAbs().maxCoeff());
+  }
   EXPECT_LT(difference, 1e-9 * lit);
 }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 #include <optional>
 #include <random>
@@ -245,6 +246,108 @@ TEST(ShadowCulling, AWallHidesAShooterWholeOnlyWhereItCoversItsCornersFromThePoi
       if (std::abs(w - 0.5) < 0.05) continue;
       const Rgb ff = rays.visible_form_factor(Vec3(0, 0, 0), Vec3(0, 0, 1), floor, shooter, 7);
       EXPECT_EQ(ff == Rgb::Zero(), w > 0.5 && !filter) << "w " << w;
+    }
+  }
+}
+
+TEST(ShadowCulling, APolygonSaidToHideAHullFromAHullCrossesEverySegmentBetweenThem) {
+  // Shooter::hides_between lets the hierarchical solver drop a cluster or a patch one polygon
+  // hides from the whole of a receiver (or from its centroid, when that is all that gathers).
+  // Where it says so, the polygon itself must cross every segment from a point of the receiver
+  // (its corners and 30 points inside; or the centroid) to a point of the
+  // source's box (its corners and 30 points inside), by the exact segment test above. Random
+  // scenes, every polygon tried as the blocker; and where a polygon's plane parts the two but
+  // some segment passes beside it, it must say no (the test counts those, so that a claim
+  // made on the planes alone would be seen).
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0, 1);
+  long hidden = 0, beside = 0, violations = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    test::RandomSceneMaker maker(seed);
+    const Scene scene = maker.random_scene().scene;
+    const RayCaster caster(scene);
+    const Shooter rays(caster, SolverSettings{}, 1e-5 * scene.bounds().diagonal());
+    const std::vector<Patch> patches = make_patches(scene, 0.4);
+    for (int trial = 0; trial < 2000; ++trial) {
+      const Patch& receiver = patches[rng() % patches.size()];
+      const Patch& source = patches[rng() % patches.size()];
+      const bool whole = trial % 2 == 0;
+      if (receiver.polygon == source.polygon) continue;
+      Eigen::AlignedBox3d box;
+      for (const Vec3& c : source.corners) box.extend(c);
+      std::vector<Vec3> to;
+      for (int k = 0; k < 8; ++k) to.push_back(box.corner(Eigen::AlignedBox3d::CornerType(k)));
+      Vec3 centroid = Vec3::Zero();
+      for (const Vec3& c : receiver.corners) centroid += c / receiver.corners.size();
+      std::vector<Vec3> from = whole ? receiver.corners : std::vector<Vec3>{centroid};
+      std::vector<Vec3> inside_from = from, inside_to = to;
+      for (int j = 0; j < 30; ++j) {
+        if (whole) inside_from.push_back(point_in(receiver.corners, rng));
+        inside_to.push_back(box.min() + box.sizes().cwiseProduct(Vec3(u(rng), u(rng), u(rng))));
+      }
+      for (size_t b = 0; b < scene.polygons.size(); ++b) {
+        const Polygon& blocker = scene.polygons[b];
+        const auto height = [&](const Vec3& y) {
+          return blocker.normal.dot(y - blocker.vertices[0]);
+        };
+        const double side = height(from[0]);
+        const bool parted =
+            std::all_of(from.begin(), from.end(),
+                        [&](const Vec3& a) { return height(a) * side > 0; }) &&
+            std::all_of(to.begin(), to.end(), [&](const Vec3& y) { return height(y) * side < 0; });
+        if (!parted) continue;
+        bool all_cross = true;
+        for (const Vec3& a : inside_from) {
+          for (const Vec3& y : inside_to) all_cross &= segment_crosses(blocker, a, y);
+        }
+        if (!rays.hides_between(from, to, static_cast<int>(b))) {
+          beside += !all_cross;
+          continue;
+        }
+        ++hidden;
+        if (!all_cross && ++violations <= 3) {
+          ADD_FAILURE() << "seed " << seed << ": polygon " << b << " said to hide the box of "
+                        << "polygon " << source.polygon << "'s patch from polygon "
+                        << receiver.polygon << "'s, but a segment passes beside it";
+        }
+      }
+    }
+  }
+  EXPECT_EQ(violations, 0);
+  std::cout << hidden << " hulls hidden whole, " << beside << " parted with a segment beside\n";
+  EXPECT_GT(hidden, 100) << "hulls hidden whole";
+  EXPECT_GT(beside, 100) << "hulls a plane parts with a segment passing beside the polygon";
+}
+
+TEST(ShadowCulling, AWallHidesABoxFromASquareOnlyWhereItCoversEveryCrossing) {
+  // The square [-0.5, 0.5]^2 at height 0, the box [-1, 1]^2 x [2, 3] above it, and between
+  // them at height 1 a square wall of half-width w. The segments' crossings of the wall's plane
+  // reach farthest from the square's corner (0.5, 0.5) to the box's lower corner (1, 1, 2):
+  // 0.5 + (1 - 0.5) / 2 = 0.75 (to the upper corner: 0.5 + 0.5 / 3 = 0.67). So the wall hides
+  // the box from the square when w > 0.75 and not when w < 0.75; nor when the wall is a
+  // filter, nor when a point of the square lies in its plane or the box reaches through it.
+  const std::vector<Vec3> square{{-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, 0}};
+  const auto box_corners = [](double bottom) {
+    std::vector<Vec3> corners;
+    for (int k = 0; k < 8; ++k)
+      corners.emplace_back(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 3 : bottom);
+    return corners;
+  };
+  for (const double w : {0.7, 0.749, 0.751, 0.8, 3.0}) {
+    for (const bool filter : {false, true}) {
+      test::SceneBuilder b;
+      const int grey = b.material("grey", Rgb::Constant(0.5), Rgb::Zero());
+      const int pane = b.material("pane", Rgb::Zero(), Rgb::Zero(), Rgb::Constant(0.5));
+      b.rectangle(-3, 3, -3, 3, 0, false, grey);
+      const int wall = b.rectangle(-w, w, -w, w, 1, true, filter ? pane : grey);
+      const RayCaster caster(b.scene());
+      const Shooter rays(caster, SolverSettings{}, 1e-6);
+      EXPECT_EQ(rays.hides_between(square, box_corners(2), wall), w > 0.75 && !filter)
+          << "w " << w << (filter ? ", a filter" : "");
+      std::vector<Vec3> touching = square;
+      touching[2].z() = 1;
+      EXPECT_FALSE(rays.hides_between(touching, box_corners(2), wall)) << "a point in its plane";
+      EXPECT_FALSE(rays.hides_between(square, box_corners(0.5), wall)) << "the box through it";
     }
   }
 }
