@@ -233,6 +233,14 @@ def main():
         "million triangles), at the building's settings; the progressive solver is stopped at",
         "its cap. The second table is the hierarchical solver's growth from one size to the next.",
     ], [], [("solve time against polygons, both solvers", "images/building-scale.png")])
+    bench_tables(out, "bench/results/building_profile.md",
+        "## Where the hierarchical solver's time goes as the building grows", [
+        "From [`bench/results/building_profile.md`](../bench/results/building_profile.md)",
+        "(`bash bench/building_profile.sh`): `perf record` on the hierarchical solve of the",
+        "building at 1 and 3 storeys of 5 x 5 rooms, each function's own CPU seconds at both",
+        "sizes, beside the pairs each patch measured. What it means:",
+        "[algorithms.md](algorithms.md#the-hierarchical-solver).",
+    ], [], [])
     bench_tables(out, "bench/results/ifc_house_solvers.md",
         "## The two solvers on the IFC house", [
         "From [`bench/results/ifc_house_solvers.md`](../bench/results/ifc_house_solvers.md)",
