@@ -482,8 +482,8 @@ class HierarchicalSolver {
     std::vector<Blocker> polygons;
   };
   /// Patch p's Blockers: its leaves' centroids (anywhere on it where refinement may split
-  /// them), and the polygons rays from its centroid meet first along the six axis directions
-  /// (a room's floor, ceiling and walls).
+  /// them), and the polygons rays from its centroid meet first in 26 directions (to a cube's
+  /// faces, edges and corners: a room's floor, ceiling and walls).
   Blockers enclosing(int p) const;
   /// True when one of `blockers` hides the hull of the points `to` (a cluster's box, a patch;
   /// `box` bounds them) from every point that gathers (Shooter::hides_between): every shadow ray

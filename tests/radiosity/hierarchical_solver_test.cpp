@@ -32,6 +32,25 @@ Solution solve_with(const Scene& scene, SolverSettings settings, SolverSettings:
 constexpr auto kHierarchical = SolverSettings::Method::hierarchical;
 constexpr auto kProgressive = SolverSettings::Method::progressive;
 
+/// The closed unit room at the origin, rho 0.5, a point light at (0.5, 0.5, 0.6), and either a
+/// second closed room [lo, hi] of the same wall or, in its place, a small black marker at its
+/// corner hi, so that both scenes have the same bounds (the patch size is a fraction of their
+/// diagonal) and so the first room the same mesh.
+Scene lit_room_and(const Vec3& lo, const Vec3& hi, bool second_room) {
+  test::SceneBuilder b;
+  const int wall = b.material("wall", Rgb::Constant(0.5), Rgb::Zero());
+  b.room(Vec3(0, 0, 0), Vec3(1, 1, 1), wall);
+  if (second_room) {
+    b.room(lo, hi, wall);
+  } else {
+    const int black = b.material("black", Rgb::Zero(), Rgb::Zero());
+    const Vec3 step(0, 0.01, 0.01);
+    b.polygon({hi, hi - Vec3(0, step.y(), 0), hi - step}, black);
+  }
+  b.scene().lights.push_back({Vec3(0.5, 0.5, 0.6), Rgb::Ones()});
+  return b.scene();
+}
+
 TEST(HierarchicalSolver, FurnaceIsEOverOneMinusRho) {
   // The closed cube, E = 1 everywhere, rho = (0.2, 0.5, 0.8): B = E / (1 - rho) = (1.25, 2, 5)
   // exactly where every receiver's form factors sum to 1. At this size every pair is near, so
@@ -210,17 +229,7 @@ TEST(HierarchicalSolver, ADarkClosedRoomTakesNoLinksAndChangesNothingBesideIt) {
   // Measured: the same links, radiosity the same to 1e-15. Linking the dark room as the lit
   // one doubles the links.
   const auto scene = [](bool dark_room) {
-    test::SceneBuilder b;
-    const int wall = b.material("wall", Rgb::Constant(0.5), Rgb::Zero());
-    b.room(Vec3(0, 0, 0), Vec3(1, 1, 1), wall);
-    if (dark_room) {
-      b.room(Vec3(2, 0, 0), Vec3(3, 1, 1), wall);
-    } else {
-      const int black = b.material("black", Rgb::Zero(), Rgb::Zero());
-      b.polygon({{3, 1, 1}, {3, 0.99, 1}, {3, 0.99, 0.99}}, black);
-    }
-    b.scene().lights.push_back({Vec3(0.5, 0.5, 0.6), Rgb::Ones()});
-    return b.scene();
+    return lit_room_and(Vec3(2, 0, 0), Vec3(3, 1, 1), dark_room);
   };
   SolverSettings settings;
   settings.refine_threshold = 0;
@@ -263,18 +272,9 @@ TEST(HierarchicalSolver, ASlabHidesTheRoomAboveWholeAndTheLightStaysWhereItWas) 
   // pairs of the lower one alone, 2.35 times without the test. Each room's light stays the same
   // as with the other room away.
   const auto scene = [](bool upper_room) {
-    test::SceneBuilder b;
-    const int wall = b.material("wall", Rgb::Constant(0.5), Rgb::Zero());
-    b.room(Vec3(0, 0, 0), Vec3(1, 1, 1), wall);
-    if (upper_room) {
-      b.room(Vec3(0, 0, 1.1), Vec3(1, 1, 2.1), wall);
-      b.scene().lights.push_back({Vec3(0.5, 0.5, 1.7), Rgb::Ones()});
-    } else {
-      const int black = b.material("black", Rgb::Zero(), Rgb::Zero());
-      b.polygon({{1, 1, 2.1}, {1, 0.99, 2.1}, {1, 0.99, 2.09}}, black);
-    }
-    b.scene().lights.push_back({Vec3(0.5, 0.5, 0.6), Rgb::Ones()});
-    return b.scene();
+    Scene s = lit_room_and(Vec3(0, 0, 1.1), Vec3(1, 1, 2.1), upper_room);
+    if (upper_room) s.lights.push_back({Vec3(0.5, 0.5, 1.7), Rgb::Ones()});
+    return s;
   };
   SolverSettings settings;
   settings.refine_threshold = 0;
