@@ -26,7 +26,7 @@ profile() {  # SCENE SOLUTION VISIBLE_SET_FROM -> the profile's line
   provenance geometry scene hemisphere vertex radiosity octree localpass bench
   echo
   echo "The building of \`data/building/make_building.py\` with 5 x 5 rooms a storey, solved with"
-  echo "\`--element-levels 0 --refine-threshold 0 --max-shots 300\`; the hemisphere local pass at"
+  echo "\`--element-levels 0 --refine-threshold 0 --max-shots 300 --solver progressive\`; the hemisphere local pass at"
   echo "tolerance 0.05 over $size x $size pixels of the building's camera, one thread"
   echo "(\`bench/pixel_profile\`). \"Polygons it may see\": what the visibility culling keeps per pixel"
   echo "(the roots of the sum and the candidate blockers); without it, every polygon is both. The"
@@ -37,7 +37,7 @@ profile() {  # SCENE SOLUTION VISIBLE_SET_FROM -> the profile's line
   for storeys in 1 3 9; do
     scene="$work/b$storeys.json"
     python3 data/building/make_building.py --storeys "$storeys" -o "$scene" 2>/dev/null
-    "$build/cli/radiosity" solve "$scene" --element-levels 0 --refine-threshold 0 --max-shots 300 \
+    "$build/cli/radiosity" solve "$scene" --solver progressive --element-levels 0 --refine-threshold 0 --max-shots 300 \
       -o "$work/b$storeys.vtp" >/dev/null 2>&1
     polygons=$("$build/cli/radiosity" info "$scene" 2>/dev/null | awk '$1 == "polygons" {print $2}')
     settings=(on)

@@ -132,12 +132,16 @@ void run_solve(const SolveOptions& o) {
 void add_solve_command(CLI::App& app, Run& run) {
   auto o = std::make_shared<SolveOptions>();
   SolverSettings& s = o->settings;
+  // The command's default is the hierarchical solver: on every scene of bench/ but the IFC
+  // house it is the faster, at the same accuracy (docs/algorithms.md, "The hierarchical
+  // solver"); what it does not carry falls back to the progressive solver, with a line.
+  s.method = SolverSettings::Method::hierarchical;
   CLI::App* sub = app.add_subcommand(
       "solve", "Mesh the scene and solve its radiosity; write the solution (.vtp).");
   sub->footer(
-      "Progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg 1988) in RGB, every\n"
-      "feature: polygons are cut along their contact lines (a block's foot on a floor), then\n"
-      "into patches (shooters) of edge --patch-size x the scene diagonal, each\n"
+      "--solver progressive: progressive refinement radiosity (Cohen, Chen, Wallace, Greenberg\n"
+      "1988) in RGB, every feature: polygons are cut along their contact lines (a block's foot\n"
+      "on a floor), then into patches (shooters) of edge --patch-size x the scene diagonal, each\n"
       "4^--element-levels elements (receivers); what lies inside closed objects is buried and\n"
       "takes no part. The patch with the most unshot power shoots, each element receiving\n"
       "Delta B x FF x V at its centroid (FF: Lambert's formula; V: the share of\n"
@@ -146,8 +150,9 @@ void add_solve_command(CLI::App& app, Run& run) {
       "linear interpolation misses the received radiosity by more than --refine-threshold (near\n"
       "a contact or concave edge: where any corner does), during shots and in --refine-passes\n"
       "passes afterwards. Stops when the unshot power is below --unshot of the emitted.\n"
-      "--solver hierarchical: hierarchical radiosity with clustering (Hanrahan, Salzman,\n"
-      "Aupperle 1991; Smits, Arvo, Greenberg 1994) on the same mesh: each patch is linked to\n"
+      "--solver hierarchical (the default): hierarchical radiosity with clustering (Hanrahan,\n"
+      "Salzman, Aupperle 1991; Smits, Arvo, Greenberg 1994) on the same mesh: each patch is\n"
+      "linked to "
       "whole clusters of patches far from it, to patches, or element by element near it;\n"
       "sources too faint to matter are left out, as long as all a patch leaves out may bring\n"
       "it at most --unshot of the mean radiosity, and opened as the light reaches them.\n"
@@ -218,7 +223,7 @@ void add_solve_command(CLI::App& app, Run& run) {
               {"progressive", SolverSettings::Method::progressive},
               {"hierarchical", SolverSettings::Method::hierarchical}},
           CLI::ignore_case))
-      ->default_str("progressive");
+      ->default_str("hierarchical");
   sub->add_option("--seed", s.seed, "Seed of the shadow-ray jitter")->capture_default_str();
   sub->add_flag("--opaque-glass{false}", s.glass_as_filters,
                 "Keep refracting objects opaque and black to the solver (by default light "

@@ -105,23 +105,19 @@ void HierarchicalSolver::open(int p, int entry, std::vector<int>& stack, Blocker
 }
 
 double HierarchicalSolver::reach(int p, int entry) const {
-  Vec3 centre;
-  double radius;
+  Sphere source;
   const Rgb* brightest;
   if (entry >= 0) {
     const PatchCluster& c = (*clusters_)[entry];
-    centre = c.box.center();
-    radius = c.size / 2;
+    source = {c.box.center(), c.size / 2};
     brightest = &cluster_brightest_[entry];
   } else {
-    centre = centroid_[-1 - entry];
-    radius = radius_[-1 - entry];
+    source = {centroid_[-1 - entry], radius_[-1 - entry]};
     brightest = &patch_brightest_[-1 - entry];
   }
-  const double gap = (centre - centroid_[p]).norm() - radius_[p] - radius;
-  const double ratio = radius / (gap + radius);
-  const double form_factor = gap > 0 ? ratio * ratio : 1.0;
-  return form_factor * brightest->maxCoeff();
+  const Sphere receiver{centroid_[p], radius_[p]};
+  return sphere_form_factor_bound(receiver, solution_.patches[p].normal, source) *
+         brightest->maxCoeff();
 }
 
 bool HierarchicalSolver::defer(int p, int entry) {

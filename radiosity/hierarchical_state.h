@@ -498,9 +498,10 @@ class HierarchicalSolver {
   /// cluster's patches are linked), a patch is linked.
   void open(int p, int entry, std::vector<int>& stack, Blockers& blockers);
   /// What a deferred_ entry (cluster `entry`, or patch -1 - entry) may bring patch p at most:
-  /// its brightest leaf's radiosity times the form factor of its bounding sphere from the
-  /// nearest point of p's, (r / d)^2 for a sphere of radius r at distance d (1 where they
-  /// meet), an upper bound on the exact form factor of anything inside it, hidden or not.
+  /// its brightest leaf's radiosity times sphere_form_factor_bound from p to its bounding
+  /// sphere ((r / d)^2 for a sphere of radius r at distance d from p's nearest point, less
+  /// low over p's horizon; 1 where they meet), an upper bound on the exact form factor of
+  /// anything inside it, hidden or not.
   /// Irradiance, not reflected light: a black receiver's absorption counts in the ledger (with
   /// rho, a black sky's links were left out and its light counted as escaped). Largest channel.
   double reach(int p, int entry) const;

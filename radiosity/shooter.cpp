@@ -16,6 +16,17 @@
 
 namespace rad {
 
+double sphere_form_factor_bound(const Sphere& receiver, const Vec3& normal, const Sphere& source) {
+  const double r = source.radius;
+  const double gap = (source.centre - receiver.centre).norm() - receiver.radius - r;  // D - r
+  if (!(gap > 0)) return 1.0;
+  const double height = normal.dot(source.centre - receiver.centre) + r;  // h + r
+  if (!(height > 0)) return 0.0;
+  const double sine = r / (gap + r);
+  const double cosine = std::sqrt(std::max(0.0, 1 - sine * sine));
+  return std::min(sine * sine, 2 * (1 - cosine) * std::min(1.0, height / gap));
+}
+
 Vec3 patch_point(const Patch& p, double u, double v) {
   const auto& c = p.corners;
   if (c.size() == 4)

@@ -199,10 +199,10 @@ TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
   const std::string cornell = quoted(kRoot / "data/cornell-box/scene.json");
   const std::string quick = " --patch-size 0.05 --element-levels 0 --refine-threshold 0";
   // stderr is a file here: whole lines, every --progress seconds, with the time so far.
-  Result r = run("--progress 0.05 solve " + cornell + quick + " --unshot 0.01 -o " +
-                 quoted(dir / "a.vtp"));
+  Result r = run("--progress 0.05 solve " + cornell + quick +
+                 " --solver progressive --unshot 0.01 -o " + quoted(dir / "a.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // The progressive solver (the default) shoots; the hierarchical one links, then gathers.
+  // The progressive solver shoots; the hierarchical one (the default) links, then gathers.
   const auto progress_lines = [](const std::string& log, const std::string& stage,
                                  const std::string& detail) {
     int lines = 0, staged = 0;
@@ -221,7 +221,7 @@ TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
   };
   EXPECT_GE(progress_lines(r.err, "shooting", "% (target 1%), shot "), 3) << r.err;
   EXPECT_EQ(r.err.find("\r"), std::string::npos) << "no bar when stderr is not a terminal";
-  r = run("--progress 0.05 solve " + cornell + quick + " --solver hierarchical --unshot 0.01 -o " +
+  r = run("--progress 0.05 solve " + cornell + quick + " --unshot 0.01 -o " +
           quoted(dir / "h.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GE(progress_lines(r.err, "gathering", "% (target 1%), sweep "), 3) << r.err;

@@ -6,10 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <random>
 
+#include "geometry/lambert.h"
 #include "radiosity/mesher.h"
 #include "radiosity/shooter.h"
 #include "scene/ray_caster.h"
@@ -385,6 +388,72 @@ TEST(ShadowCulling, PastItsCapTheScanLeavesThePairToTheRaysWhichLetAllThrough) {
     EXPECT_EQ(rays.visible_form_factor(x, up, floor, shooter, 7), Rgb::Constant(whole))
         << crowd << " triangles beside the shaft";
   }
+}
+
+TEST(ShadowCulling, TheReachOfASphereBoundsTheFormFactorOfAllThatLiesInIt) {
+  // sphere_form_factor_bound against Lambert's exact formula, from points of random triangles
+  // (corners, centroid, inside) to what lies in random spheres on both sides of the triangle's
+  // horizon: the 64-gon inscribed in the sphere's silhouette from the point (nearly all the
+  // sphere shows it) and random triangles inside it. The silhouettes make the test sharp:
+  // above the receiver the bound is within a few per cent of them, and a bound that forgot
+  // the part of a sphere reaching above the horizon would read 0 where they see light.
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  const auto random_unit = [&] {
+    Vec3 v;
+    do v = Vec3(u(rng), u(rng), u(rng));
+    while (!(v.norm() > 0.1 && v.norm() < 1));
+    return Vec3(v.normalized());
+  };
+  int points = 0, sharp = 0, straddling = 0;
+  double worst = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 n = random_unit();
+    const Vec3 a = n.unitOrthogonal(), b = n.cross(a);
+    const double scale = std::pow(10.0, -3 * unit(rng));  // 1e-3 to 1
+    std::vector<Vec3> triangle;
+    for (int k = 0; k < 3; ++k) triangle.push_back(scale * (u(rng) * a + u(rng) * b));
+    const Vec3 centroid = (triangle[0] + triangle[1] + triangle[2]) / 3;
+    const Sphere receiver = bounding_sphere(triangle, centroid);
+    // Sources over the whole sky, a third of them straddling the horizon.
+    Sphere source{3 * Vec3(u(rng), u(rng), u(rng)), std::pow(10.0, -2 * unit(rng))};
+    if (trial % 3 == 0) source.centre += (0.5 * u(rng) * source.radius - n.dot(source.centre)) * n;
+    const double bound = sphere_form_factor_bound(receiver, n, source);
+    std::vector<Vec3> at = triangle;
+    at.push_back(centroid);
+    for (int k = 0; k < 3; ++k) at.push_back(point_in(triangle, rng));
+    for (const Vec3& x : at) {
+      const Vec3 w = source.centre - x;
+      const double d = w.norm();
+      if (!(d > source.radius * (1 + 1e-6))) continue;
+      ++points;
+      // The silhouette from x: the circle of radius r cos(alpha) at d cos^2(alpha) along w.
+      const double sine = source.radius / d, cosine = std::sqrt(1 - sine * sine);
+      const Vec3 axis = w / d, p = axis.unitOrthogonal(), q = axis.cross(p);
+      std::vector<Vec3> silhouette;
+      for (int k = 0; k < 64; ++k) {
+        const double t = 2 * std::numbers::pi * k / 64;
+        silhouette.push_back(x + d * cosine * cosine * axis +
+                             source.radius * cosine * (std::cos(t) * p + std::sin(t) * q));
+      }
+      std::vector<Vec3> inside;
+      for (int k = 0; k < 3; ++k)
+        inside.push_back(source.centre + source.radius * unit(rng) * random_unit());
+      const double seen = point_polygon_form_factor(x, n, silhouette);
+      const double inner = point_polygon_form_factor(x, n, inside);
+      EXPECT_LE(seen, bound * (1 + 1e-9) + 1e-15) << "trial " << trial;
+      EXPECT_LE(inner, bound * (1 + 1e-9) + 1e-15) << "trial " << trial;
+      if (bound > 0) worst = std::max(worst, seen / bound);
+      if (seen > 0.9 * bound && bound > 0) ++sharp;
+      if (std::abs(n.dot(source.centre - centroid)) < source.radius && seen > 0) ++straddling;
+    }
+  }
+  std::cout << points << " points, " << sharp << " within 10% of the bound, " << straddling
+            << " seeing a sphere across the horizon; largest share of the bound seen " << worst
+            << "\n";
+  EXPECT_GT(points, 10000);
+  EXPECT_GT(sharp, 100);
+  EXPECT_GT(straddling, 1000);
 }
 
 }  // namespace
