@@ -66,11 +66,21 @@ void run_solve(const SolveOptions& o) {
       shown = p.stage;
       bar.stage(p.stage == Stage::burying                                 ? "solve (burying)"
                 : p.stage == Stage::linking                               ? "solve (linking)"
+                : p.stage == Stage::opening                               ? "solve (opening)"
+                : p.stage == Stage::refining                              ? "solve (refining)"
                 : settings.method == SolverSettings::Method::hierarchical ? "solve (gathering)"
                                                                           : "solve (shooting)");
     }
     if (p.stage == Stage::linking) {
       bar.update(p.stage_done, "patches linked to their sources");
+      return;
+    }
+    if (p.stage == Stage::opening) {
+      bar.update(p.stage_done, "patches' faint sources reached by the light opened");
+      return;
+    }
+    if (p.stage == Stage::refining) {
+      bar.update(p.stage_done, "elements tested, then the new ones linked");
       return;
     }
     if (p.stage == Stage::meshing) {

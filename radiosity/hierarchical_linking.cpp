@@ -187,7 +187,8 @@ int HierarchicalSolver::open_deferred() {
   find_brightest(radiosity_);
   const size_t count = solution_.patches.size();
   std::vector<int> opened(count, 0);
-  tbb::parallel_for(size_t(0), count, [&](size_t p) { opened[p] = settle(static_cast<int>(p)); });
+  for_in_parts(count, 0, 1, reporter(SolveProgress::Stage::opening),
+               [&](size_t p) { opened[p] = settle(static_cast<int>(p)); });
   std::vector<int> changed, handed;
   for (size_t p = 0; p < count; ++p) {
     if (opened[p] == 0) continue;

@@ -29,7 +29,9 @@ int HierarchicalSolver::refine() {
   const double contact_size = std::max(smallest, settings_.patch_size * diagonal_ / 16);
   std::vector<char> split(mesh.face_count(), 0);
   faint_dropped_.resize(elements.size(), 0);
-  tbb::parallel_for(0, mesh.face_count(), [&](int f) {
+  const std::function<void(double)> refining = reporter(SolveProgress::Stage::refining);
+  for_in_parts(static_cast<size_t>(mesh.face_count()), 0, 0.5, refining, [&](size_t face) {
+    const int f = static_cast<int>(face);
     const int e = mesh.element(f);
     const Element& el = elements[e];
     if (buried_[e] || !(longest_edge(el.corners) > smallest)) return;
@@ -96,7 +98,7 @@ int HierarchicalSolver::refine() {
   faint_dropped_.resize(count, 0);
   tbb::parallel_for(size_t(0), parents.size(),
                     [&](size_t k) { drop_faint_hidden(parents[k], reference); });
-  tbb::parallel_for(size_t(0), children.size(), [&](size_t k) {
+  for_in_parts(children.size(), 0.5, 1, refining, [&](size_t k) {
     const int c = children[k];
     const Element& child = elements[c];
     const Patch& patch = solution_.patches[child.patch];

@@ -18,6 +18,7 @@
 #include "radiosity/error_bound.h"
 #include "radiosity/hierarchical_solver.h"
 #include "radiosity/mesher.h"
+#include "radiosity/parallel_parts.h"
 #include "radiosity/patch_clusters.h"
 #include "radiosity/patch_mesh.h"
 #include "radiosity/random_stream.h"
@@ -127,12 +128,8 @@ class HierarchicalSolver {
     for (const int e : leaves_)
       first_light[e] = emission(e) + reflectance(e).cwiseProduct(direct_[e]);
     find_brightest(first_light);
-    const size_t part = std::max<size_t>(256, count / 100);
-    for (size_t begin = 0; begin < count; begin += part) {
-      report(SolveProgress::Stage::linking, static_cast<double>(begin) / count);
-      tbb::parallel_for(begin, std::min(count, begin + part),
-                        [&](size_t p) { link_patch(static_cast<int>(p)); });
-    }
+    for_in_parts(count, 0, 1, reporter(SolveProgress::Stage::linking),
+                 [&](size_t p) { link_patch(static_cast<int>(p)); });
     count_links();
     // The links' row sums: the gather of a uniform radiosity of 1. The exact form factors of a
     // point sum to at most 1 (to the hemisphere); the clusters' and the centroids' estimates
@@ -304,6 +301,9 @@ class HierarchicalSolver {
     r.stage = stage;
     r.stage_done = done;
     progress_(r);
+  }
+  std::function<void(double)> reporter(SolveProgress::Stage stage) const {
+    return [this, stage](double done) { report(stage, done); };
   }
   const Material& material(int polygon) const {
     return scene_.materials[scene_.polygons[polygon].material];

@@ -11,10 +11,12 @@ namespace rad {
 /// Reported while the mesh is made, and after every shot.
 struct SolveProgress {
   /// What the solve is doing: cutting and splitting the polygons into patches and elements,
-  /// finding the elements buried inside closed objects, linking receivers to sources (the
-  /// hierarchical solver; for these three, `stage_done` is the fraction done), or shooting
-  /// (the fields below; the hierarchical solver's sweeps count as shots).
-  enum class Stage { meshing, burying, linking, shooting };
+  /// finding the elements buried inside closed objects, and, in the hierarchical solver,
+  /// linking receivers to sources, opening the sources the light has reached since, and
+  /// splitting elements (refinement) with their new links (for these, `stage_done` is the
+  /// fraction done); or shooting (the fields below; the hierarchical solver's sweeps count as
+  /// shots).
+  enum class Stage { meshing, burying, linking, opening, refining, shooting };
   Stage stage = Stage::shooting;
   double stage_done = 0;
   int shots = 0;

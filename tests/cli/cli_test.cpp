@@ -225,6 +225,11 @@ TEST(Cli, ASolveInALogShowsItsProgressAndAMeshBeyondMemoryIsRefusedFirst) {
           quoted(dir / "h.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_GE(progress_lines(r.err, "gathering", "% (target 1%), sweep "), 3) << r.err;
+  // With refinement, the passes show theirs (seconds each, between the sweeps).
+  r = run("--progress 0.05 solve " + cornell +
+          " --patch-size 0.1 --element-levels 0 --unshot 0.01 -o " + quoted(dir / "r.vtp"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  progress_lines(r.err, "refining", "elements tested, then the new ones linked");
   r = run("--progress 0 solve " + cornell + quick + " --unshot 0.01 -o " + quoted(dir / "b.vtp"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("solve ("), std::string::npos) << r.err;
