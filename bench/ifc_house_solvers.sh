@@ -40,8 +40,12 @@ e = re.search(r"energy: emitted \(([^)]*)\) = absorbed \(([^)]*)\) \+ escaped \(
 emitted, escaped = (sum(float(v) for v in e.group(i).split(",")) for i in (1, 3))
 pairs = re.search(r"visibility: (\d+) point-patch pairs", log)
 elements = re.search(r"patches, (\d+) elements", log)
+steps = re.search(r"time: linking ([\d.e+-]+) s, opening the sources the light reached "
+                  r"([\d.e+-]+) s, refining ([\d.e+-]+) s, sweeps ([\d.e+-]+) s", log)
+steps = " / ".join(f"{float(v):.1f}" for v in steps.groups()) if steps else "-"
 print(f"| {settings} | {solver} | {elements.group(1)} | {seconds:.1f} | {kb / 1024:.0f} | "
-      f"{links.group(1) if links else '-'} | {pairs.group(1)} | {100 * escaped / emitted:.2f}% |")
+      f"{links.group(1) if links else '-'} | {pairs.group(1)} | {100 * escaped / emitted:.2f}% | "
+      f"{steps} |")
 PY
 )$'\n'
   done
@@ -55,12 +59,14 @@ ratios=$(python3 -c "import sys; r = sys.argv[1].splitlines(); s = [float(l.spli
   echo "bench/ifc_house.sh (AC14-FZK-Haus.ifc through Assimp and scripts/ifc_house.py), with"
   echo "\`$coarse\` (coarse) and at default settings, on all cores, one run each (wall"
   echo "seconds, peak resident memory)."
-  echo "What the hierarchical solver spends its time on there: docs/algorithms.md, \"The"
+  echo "The hierarchical solver's steps: the seconds of its linking, its opening rounds (the"
+  echo "sources the light has reached since linking), its refinement passes and its sweeps, as"
+  echo "\`solve\` prints them. What they spend their time on: docs/algorithms.md, \"The"
   echo "hierarchical solver\"."
   provenance radiosity scene scripts/ifc_house.py
   echo
-  echo "| settings | solver | leaves | s | MiB | links | point-patch pairs | escaped |"
-  echo "|---|---|---|---|---|---|---|---|"
+  echo "| settings | solver | leaves | s | MiB | links | point-patch pairs | escaped | steps: linking / opening / refining / sweeps s |"
+  echo "|---|---|---|---|---|---|---|---|---|"
   printf "%s" "$rows"
   echo
   echo "Hierarchical / progressive time: **$ratios**. The target for the house: at most"

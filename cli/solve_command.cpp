@@ -132,7 +132,10 @@ void run_solve(const SolveOptions& o) {
   if (s.links > 0) {
     std::cerr << "left out of the links: " << s.left_out
               << " faint clusters and patches, bringing any element at most " << s.left_out_bound
-              << " W/m^2 of irradiance (certified, at the final radiosity)\n";
+              << " W/m^2 of irradiance (certified, at the final radiosity)\n"
+              << "time: linking " << s.steps.linking << " s, opening the sources the light "
+              << "reached " << s.steps.opening << " s, refining " << s.steps.refining
+              << " s, sweeps " << s.steps.sweeping << " s\n";
   }
   std::cerr << "wrote " << o.output << "\n";
 }

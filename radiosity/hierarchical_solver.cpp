@@ -30,19 +30,37 @@ Solution solve_hierarchical(const RayCaster& caster, const SolverSettings& setti
   HierarchicalSolver solver(caster, settings, progress);
   // Sweeps until converged, then until no link linking left out has become bright enough to
   // be opened (light reaches the surfaces that were dark at first bounce by bounce).
-  const auto converge = [&] {
-    solver.iterate();
-    for (int round = 0; round < kOpeningRounds && solver.open_deferred() > 0; ++round)
-      solver.iterate();
+  SolveStats::Steps steps;
+  const auto timed = [](double& seconds, const auto& step) {
+    const auto begin = std::chrono::steady_clock::now();
+    const auto result = step();
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    return result;
   };
-  solver.link();
+  const auto iterate = [&] {
+    solver.iterate();
+    return 0;
+  };
+  const auto converge = [&] {
+    timed(steps.sweeping, iterate);
+    for (int round = 0;
+         round < kOpeningRounds && timed(steps.opening, [&] { return solver.open_deferred(); }) > 0;
+         ++round)
+      timed(steps.sweeping, iterate);
+  };
+  timed(steps.linking, [&] {
+    solver.link();
+    return 0;
+  });
   converge();
   for (int pass = 0; pass < settings.refine_passes; ++pass) {
-    if (solver.refine() == 0) break;
+    if (timed(steps.refining, [&] { return solver.refine(); }) == 0) break;
     converge();
   }
-  return solver.finish(
+  Solution solution = solver.finish(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  solution.stats.steps = steps;
+  return solution;
 }
 
 }  // namespace rad

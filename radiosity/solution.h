@@ -134,6 +134,12 @@ struct SolveStats {
   /// at the final radiosity [W/m^2, largest channel] (HierarchicalSolver::reach). Not saved.
   long long left_out = 0;
   double left_out_bound = 0;
+  /// The hierarchical solver's wall seconds by step: linking, the opening rounds (sources the
+  /// light has reached since), the refinement passes and the sweeps (meshing is the rest of
+  /// `seconds`). Not saved.
+  struct Steps {
+    double linking = 0, opening = 0, refining = 0, sweeping = 0;
+  } steps;
 };
 
 /// A solved (or loaded) radiosity solution.

@@ -168,16 +168,16 @@ TEST(Cli, SolveThenRenderPatches) {
 }
 
 TEST(Cli, TheHierarchicalSolverSolvesOrSaysWhyItHandsOver) {
-  // --solver hierarchical on a plain diffuse scene: links and sweeps in the summary, a file the
-  // patches' render reads. On a scene with point lights: one line saying the progressive solver
-  // takes it, and a solve all the same.
+  // The hierarchical solver, the default, on a plain diffuse scene: links, sweeps and the time
+  // of each step in the summary, a file the patches' render reads. On a scene with a glossy
+  // ring: one line saying the progressive solver takes it, and a solve all the same.
   const fs::path dir = scratch();
   const std::string plain = quoted(kRoot / "data/light-over-floor/scene.json");
-  Result r = run("solve " + plain + " --solver hierarchical --patch-size 0.2 -o '" +
-                 (dir / "h.vtp").string() + "'");
+  Result r = run("solve " + plain + " --patch-size 0.2 -o '" + (dir / "h.vtp").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("sweeps over"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("not the links' approximations"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\ntime: linking "), std::string::npos) << r.err;
   r = run("render " + plain + " --method patches --solution '" + (dir / "h.vtp").string() +
           "' --width 16 --height 16 -o '" + (dir / "h.exr").string() + "'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
