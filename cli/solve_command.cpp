@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "cli/commands.h"
 #include "cli/common.h"
@@ -59,36 +60,25 @@ void run_solve(const SolveOptions& o) {
     }
   }
   using Stage = SolveProgress::Stage;
+  // The stages that report the fraction done: their label, and what the fraction counts.
+  const std::map<Stage, std::pair<const char*, const char*>> counted{
+      {Stage::meshing, {"solve (meshing)", "polygons into patches and elements"}},
+      {Stage::burying, {"solve (burying)", "elements inside closed objects found"}},
+      {Stage::linking, {"solve (linking)", "patches linked to their sources"}},
+      {Stage::opening, {"solve (opening)", "patches' faint sources reached by the light opened"}},
+      {Stage::refining, {"solve (refining)", "elements tested, then the new ones linked"}}};
   ProgressBar bar("solve (meshing)");
   Stage shown = Stage::meshing;
   Solution solution = solve(caster, settings, [&](const SolveProgress& p) {
+    const auto fraction = counted.find(p.stage);
     if (p.stage != shown) {
       shown = p.stage;
-      bar.stage(p.stage == Stage::burying                                 ? "solve (burying)"
-                : p.stage == Stage::linking                               ? "solve (linking)"
-                : p.stage == Stage::opening                               ? "solve (opening)"
-                : p.stage == Stage::refining                              ? "solve (refining)"
+      bar.stage(fraction != counted.end()                                 ? fraction->second.first
                 : settings.method == SolverSettings::Method::hierarchical ? "solve (gathering)"
                                                                           : "solve (shooting)");
     }
-    if (p.stage == Stage::linking) {
-      bar.update(p.stage_done, "patches linked to their sources");
-      return;
-    }
-    if (p.stage == Stage::opening) {
-      bar.update(p.stage_done, "patches' faint sources reached by the light opened");
-      return;
-    }
-    if (p.stage == Stage::refining) {
-      bar.update(p.stage_done, "elements tested, then the new ones linked");
-      return;
-    }
-    if (p.stage == Stage::meshing) {
-      bar.update(p.stage_done, "polygons into patches and elements");
-      return;
-    }
-    if (p.stage == Stage::burying) {
-      bar.update(p.stage_done, "elements inside closed objects found");
+    if (fraction != counted.end()) {
+      bar.update(p.stage_done, fraction->second.second);
       return;
     }
     // Progress on a log scale: from 1 (nothing shot) to the target fraction.
