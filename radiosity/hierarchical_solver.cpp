@@ -33,28 +33,24 @@ Solution solve_hierarchical(const RayCaster& caster, const SolverSettings& setti
   SolveStats::Steps steps;
   const auto timed = [](double& seconds, const auto& step) {
     const auto begin = std::chrono::steady_clock::now();
-    const auto result = step();
+    step();
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    return result;
-  };
-  const auto iterate = [&] {
-    solver.iterate();
-    return 0;
   };
   const auto converge = [&] {
-    timed(steps.sweeping, iterate);
-    for (int round = 0;
-         round < kOpeningRounds && timed(steps.opening, [&] { return solver.open_deferred(); }) > 0;
-         ++round)
-      timed(steps.sweeping, iterate);
+    timed(steps.sweeping, [&] { solver.iterate(); });
+    for (int round = 0; round < kOpeningRounds; ++round) {
+      int opened = 0;
+      timed(steps.opening, [&] { opened = solver.open_deferred(); });
+      if (opened == 0) break;
+      timed(steps.sweeping, [&] { solver.iterate(); });
+    }
   };
-  timed(steps.linking, [&] {
-    solver.link();
-    return 0;
-  });
+  timed(steps.linking, [&] { solver.link(); });
   converge();
   for (int pass = 0; pass < settings.refine_passes; ++pass) {
-    if (timed(steps.refining, [&] { return solver.refine(); }) == 0) break;
+    int split = 0;
+    timed(steps.refining, [&] { split = solver.refine(); });
+    if (split == 0) break;
     converge();
   }
   Solution solution = solver.finish(

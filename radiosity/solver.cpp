@@ -18,6 +18,7 @@
 #include "radiosity/error_bound.h"
 #include "radiosity/hierarchical_solver.h"
 #include "radiosity/mesher.h"
+#include "radiosity/parallel_parts.h"
 #include "radiosity/progressive_solver.h"
 
 namespace rad {
@@ -214,17 +215,15 @@ void ProgressiveSolver::find_buried(const std::function<void(double)>& progress)
   buried_.assign(count, 0);
   long_enough_.assign(count, 0);
   near_contact_.assign(count, 0);
-  // In a hundred parts, to report between them (each part still runs in parallel).
-  const size_t part = std::max<size_t>(4096, count / 100);
-  for (size_t begin = 0; begin < count; begin += part) {
-    if (progress) progress(static_cast<double>(begin) / count);
-    tbb::parallel_for(begin, std::min(count, begin + part), [&](size_t e) {
-      const Element& el = elements()[e];
-      buried_[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
-      long_enough_[e] = longest_edge(el.corners) > min_size_;
-      near_contact_[e] = near_a_contact(el);
-    });
-  }
+  for_in_parts(
+      count, 0, 1, progress,
+      [&](size_t e) {
+        const Element& el = elements()[e];
+        buried_[e] = rays_.is_buried(el.centroid, solution_.patches[el.patch].normal);
+        long_enough_[e] = longest_edge(el.corners) > min_size_;
+        near_contact_[e] = near_a_contact(el);
+      },
+      4096);
   constexpr int grid = 8;
   live_area_.assign(patches().size(), 0);
   tbb::parallel_for(size_t(0), patches().size(), [&](size_t i) {
