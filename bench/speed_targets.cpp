@@ -117,25 +117,37 @@ int main(int argc, char** argv) {
       static_cast<int>(faces.size()), solve_seconds, size, size, tolerance, grid.size(), stride,
       stride);
   std::printf(
-      "| method | seconds | target 10 s: ratio | / Monte Carlo 1024 (target 0.25) | clusters per "
-      "pixel | faces exact per pixel | projected per pixel | bound violations | largest error "
-      "/ bound | largest rel. error |\n|---|---|---|---|---|---|---|---|---|---|\n");
+      "| method | interpolation cells | seconds | target 10 s: ratio | / Monte Carlo 1024 (target "
+      "0.25) | pixels interpolated | clusters per pixel | faces exact per pixel | projected per "
+      "pixel | bound violations | largest error / bound | largest rel. error |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const rad::Method method : {rad::Method::hemisphere, rad::Method::vertex}) {
-    const rad::LocalPass pass(scene, faces, method);
-    start = Clock::now();
-    const rad::IrradianceImage image =
-        rad::render_local_pass(scene, caster, camera, pass, tolerance);
-    const double s = seconds_since(start);
-    const BoundCheck c = check(image, grid);
-    std::printf("| %s | %.1f | %.1f | %.2f | %.0f | %.1f | %.0f | %d of %d | %.3f | %.2e |\n",
-                rad::method_name(method).c_str(), s, s / 10.0, s / mc_seconds,
-                mean_over_surface(image.clusters, image.surface),
-                mean_over_surface(image.gathered_exactly, image.surface),
-                mean_over_surface(image.projected, image.surface), c.violations, c.pixels,
-                c.worst_error_over_bound, c.worst_relative_error);
-    std::fflush(stdout);
+    for (const int tile : {0, 8}) {
+      rad::LocalPassSettings settings;
+      settings.tile = tile;
+      const rad::LocalPass pass(scene, faces, method, settings);
+      start = Clock::now();
+      const rad::IrradianceImage image =
+          rad::render_local_pass(scene, caster, camera, pass, tolerance);
+      const double s = seconds_since(start);
+      const BoundCheck c = check(image, grid);
+      const rad::IrradianceSummary summary = rad::summarize(image);
+      std::printf(
+          "| %s | %s | %.1f | %.1f | %.2f | %.1f%% | %.0f | %.1f | %.0f | %d of %d | %.3f | "
+          "%.2e |\n",
+          rad::method_name(method).c_str(),
+          tile > 1 ? (std::to_string(tile) + " x " + std::to_string(tile)).c_str() : "off", s,
+          s / 10.0, s / mc_seconds,
+          100.0 * summary.interpolated / std::max<size_t>(summary.pixels, 1),
+          mean_over_surface(image.clusters, image.surface),
+          mean_over_surface(image.gathered_exactly, image.surface),
+          mean_over_surface(image.projected, image.surface), c.violations, c.pixels,
+          c.worst_error_over_bound, c.worst_relative_error);
+      std::fflush(stdout);
+    }
   }
   const BoundCheck mc_check = check(mc, grid);
-  std::printf("| Monte Carlo, 1024 rays | %.1f | %.1f | 1.00 | - | - | - | - | - | %.2e |\n",
-              mc_seconds, mc_seconds / 10.0, mc_check.worst_relative_error);
+  std::printf(
+      "| Monte Carlo, 1024 rays | - | %.1f | %.1f | 1.00 | - | - | - | - | - | - | %.2e |\n",
+      mc_seconds, mc_seconds / 10.0, mc_check.worst_relative_error);
 }

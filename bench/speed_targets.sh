@@ -23,7 +23,10 @@ trap 'rm -f "$tmp"' EXIT
   echo "Seconds are the render's own (rays and gathers, all cores), one run each, all in one run"
   echo "of this program. The target: at most 10 s, and at most 0.25 of a 1024-ray Monte Carlo"
   echo "image in the same run, with no bound violation. Errors are relative on the brightest"
-  echo "channel; a violation is a checked pixel whose error exceeds its certified bound."
+  echo "channel; a violation is a checked pixel whose error exceeds its certified bound. Each"
+  echo "method runs twice: every pixel on its own, and with the certified interpolation over"
+  echo "cells of 8 x 8 pixels (localpass/tile_gather.h; \"pixels interpolated\": those whose"
+  echo "smooth part a cell interpolated, the rest gathered at the pixel)."
   echo
   "$build/bench/speed_targets" "$size" "$tolerance" "$stride"
 } >"$tmp"

@@ -75,6 +75,8 @@ RenderStats local_pass_stats(const RenderOptions& o, const IrradianceImage& imag
   out.faces = face_count;
   out.octree_leaves = leaves;
   out.pixels_gathered = summary.pixels;
+  out.pixels_interpolated = summary.interpolated;
+  if (image.samples_per_pixel == 0) out.tile = o.settings.tile;
   out.emitting_mean = summary.gathered_exactly_mean;
   out.emitting_max = summary.gathered_exactly_max;
   out.projected_mean = summary.projected_mean;
@@ -291,6 +293,11 @@ void report_render(const RenderOptions& o, const MethodTraits& m, const CameraSp
     std::cerr << "render: faces gathered exactly per pixel: mean " << r.stats->emitting_mean
               << " of " << r.stats->faces << "; largest relative bound "
               << r.stats->relative_bound_max << "\n";
+    if (r.stats->pixels_interpolated > 0) {
+      std::cerr << "render: " << r.stats->pixels_interpolated << " of " << r.stats->pixels_gathered
+                << " pixels interpolated in cells of " << r.stats->tile
+                << " (certified: localpass/tile_gather.h)\n";
+    }
   }
 }
 
@@ -378,6 +385,14 @@ void add_render_command(CLI::App& app, Run& run) {
       "hemisphere/vertex: stop gathering a pixel once its certified error bound is at most this "
       "fraction of its value (0: exact)");
   add_samples_option(sub, &o->samples, "pixel");
+  sub->add_option("--tile", o->settings.tile,
+                  "hemisphere/vertex: certified interpolation over cells of this many pixels a "
+                  "side: a cell's corners are gathered, the light that reaches all of it "
+                  "unhidden is interpolated with a bound on the error, the rest gathered per "
+                  "pixel; each pixel keeps its certified bound (0 or 1: every pixel on its own; "
+                  "never at tolerance 0)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   sub->add_option("--stats", o->stats,
                   "hemisphere/vertex/montecarlo: stats JSON path (default: OUTPUT with "
                   ".stats.json; -: stdout)");

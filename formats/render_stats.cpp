@@ -23,6 +23,7 @@ void write_render_stats(const std::filesystem::path& path, const RenderStats& s)
   out["faces"] = s.faces;
   out["octree_leaves"] = s.octree_leaves;
   out["pixels_gathered"] = s.pixels_gathered;
+  out["interpolation"] = {{"tile", s.tile}, {"pixels", s.pixels_interpolated}};
   out["emitting_per_pixel"] = {{"mean", s.emitting_mean}, {"max", s.emitting_max}};
   out["emitting_fraction_mean"] = s.emitting_mean / faces;
   out["projected_per_pixel"] = {{"mean", s.projected_mean}, {"max", s.projected_max}};

@@ -18,6 +18,8 @@ struct RenderStats {
   int threads = 0, processes = 1;  ///< A process's threads; the MPI job's processes.
   int faces = 0, octree_leaves = 0;
   size_t pixels_gathered = 0;
+  int tile = 0;                    ///< The interpolation cells' side (0: off)
+  size_t pixels_interpolated = 0;  ///< Of pixels_gathered, those a cell interpolated
   /// Faces gathered exactly and faces projected per pixel (Monte Carlo: its rays per pixel).
   double emitting_mean = 0, projected_mean = 0, clusters_mean = 0;
   int emitting_max = 0, projected_max = 0;

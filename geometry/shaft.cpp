@@ -45,6 +45,16 @@ Shaft::Shaft(const Vec3& x, Eigen::AlignedBox3d box, double pad) : pad_(pad) {
   }
 }
 
+Shaft::Shaft(const Eigen::AlignedBox3d& from, const Eigen::AlignedBox3d& box, double pad)
+    : Shaft(from.center(), box, pad) {
+  const double rho = 0.5 * from.diagonal().norm();
+  pad_ += rho;
+  Eigen::AlignedBox3d grown = from;
+  grown.min().array() -= pad_;
+  grown.max().array() += pad_;
+  hull_box_.extend(grown);
+}
+
 bool Shaft::may_meet(const std::vector<Vec3>& vertices) const {
   return may_meet(vertices, bounding_box(vertices));
 }

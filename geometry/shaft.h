@@ -15,6 +15,13 @@ class Shaft {
   /// The hull of x and `box` grown by `pad` on every side (so flat boxes have volume, and
   /// rounding errors of size pad are on the safe side).
   Shaft(const Vec3& x, Eigen::AlignedBox3d box, double pad);
+  /// A shaft that holds the hull of two boxes (every segment from a point of `from` to a point
+  /// of `box`, grown by `pad`): the shaft from `from`'s centre c, with its planes moved out by
+  /// `from`'s half diagonal rho too. Why it holds them: a point of the hull is
+  /// t (c + e) + (1 - t) y with |e| <= rho, within rho of t c + (1 - t) y, which lies in the
+  /// shaft from c; moving every plane of a convex polyhedron out by rho takes in everything
+  /// within rho of it, and the bounding box is grown to hold `from` as well.
+  Shaft(const Eigen::AlignedBox3d& from, const Eigen::AlignedBox3d& box, double pad);
 
   /// False only when the polygon with these vertices certainly misses the shaft: its box misses
   /// the shaft's box, or clipping it by the shaft's planes (moved out by pad) leaves nothing.

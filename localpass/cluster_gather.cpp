@@ -20,8 +20,9 @@ namespace rad {
 class LocalPass::ClusterGather {
  public:
   ClusterGather(const LocalPass& pass, const Vec3& x, const Vec3& n, double tolerance,
-                const Rgb& exact_part)
+                const GatherScope& scope)
       : pass_(pass),
+        scope_(scope),
         clusters_(pass.clusters_.clusters()),
         x_(x),
         n_(n),
@@ -29,7 +30,8 @@ class LocalPass::ClusterGather {
         exact_only_(!(tolerance > 0)),
         queries_(!pass.blocker_pieces_.empty()),
         faces_by_query_(queries_ && pass.faces_by_query_),
-        exact_(exact_part) {}
+        exact_(scope.known_lo),
+        known_width_(scope.known_hi - scope.known_lo) {}
 
   LocalPassResult run() {
     add_roots();
@@ -43,7 +45,7 @@ class LocalPass::ClusterGather {
     }
     if (session_) result_.projected += session_->projected();
     // The interval of the sum, from the terms themselves (the running sums drift by rounding).
-    Rgb lo = exact_ + gathered_, hi = exact_ + gathered_;
+    Rgb lo = exact_ + gathered_, hi = exact_ + gathered_ + known_width_;
     for (const Term& t : heap_) lo += t.lo, hi += t.hi;
     for (const Term& t : pending_) hi += t.hi;
     result_.bound = 0.5 * (hi - lo);
@@ -65,9 +67,15 @@ class LocalPass::ClusterGather {
     return a.width != b.width ? a.width < b.width : a.index > b.index;
   }
 
-  /// The root cluster of every polygon x may see (localpass/visible_set.h; without the
-  /// visibility culling, the whole scene), each with its blockers among the candidates.
+  /// The roots of the sum: the root cluster of every polygon x may see (localpass/visible_set.h;
+  /// without the visibility culling, the whole scene), each with its blockers among the
+  /// candidates; or the scope's clusters, those known to be seen whole as they are and the
+  /// others culled alike (a polygon x cannot see contributes nothing).
   void add_roots() {
+    if (scope_.whole) {
+      for (const int c : *scope_.whole) add(c, 0, 0);
+    }
+    if (scope_.given_roots() && (!scope_.culled || scope_.culled->empty())) return;
     std::vector<int> seen;
     if (pass_.visible_set_) {
       seen = pass_.visible_set_->polygons(x_, n_);
@@ -82,7 +90,12 @@ class LocalPass::ClusterGather {
                               &scratch_);
       add_with_scratch_blockers(root);
     };
-    if (pass_.visible_set_) {
+    if (scope_.given_roots()) {
+      for (const int c : *scope_.culled) {
+        if (!pass_.visible_set_ || std::ranges::binary_search(seen, clusters_[c].polygon))
+          add_root(c);
+      }
+    } else if (pass_.visible_set_) {
       for (const int p : seen)
         if (pass_.root_of_polygon_[p] >= 0) add_root(pass_.root_of_polygon_[p]);
     } else {
@@ -243,7 +256,7 @@ class LocalPass::ClusterGather {
     if (heap_.empty() && pending_.empty()) return true;
     if (exact_only_) return false;
     const Rgb lo = exact_ + heap_lo_ + gathered_;
-    const Rgb hi = exact_ + heap_hi_ + gathered_ + pending_hi_;
+    const Rgb hi = exact_ + heap_hi_ + gathered_ + pending_hi_ + known_width_;
     return 0.5 * (hi - lo).maxCoeff() <= tolerance_ * (0.5 * (hi + lo)).maxCoeff();
   }
 
@@ -303,6 +316,7 @@ class LocalPass::ClusterGather {
   }
 
   const LocalPass& pass_;
+  const GatherScope& scope_;
   const std::vector<Cluster>& clusters_;
   const Vec3 x_, n_;
   const double tolerance_;  ///< The stopping rule's relative tolerance.
@@ -314,6 +328,7 @@ class LocalPass::ClusterGather {
 
   LocalPassResult result_;
   Rgb exact_;
+  Rgb known_width_;  ///< The scope's known part: exact_ starts at its lower end
   Rgb heap_lo_ = Rgb::Zero(), heap_hi_ = Rgb::Zero();
   Rgb pending_hi_ = Rgb::Zero();
   Rgb gathered_ = Rgb::Zero();
@@ -328,8 +343,8 @@ class LocalPass::ClusterGather {
 };
 
 LocalPassResult LocalPass::gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance,
-                                              const Rgb& exact_part) const {
-  return ClusterGather(*this, x, n, tolerance, exact_part).run();
+                                              const GatherScope& scope) const {
+  return ClusterGather(*this, x, n, tolerance, scope).run();
 }
 
 }  // namespace rad

@@ -45,6 +45,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
       tolerance_(scene.tolerance()),
       faces_by_query_(method == Method::hemisphere),
       occlusion_culling_(settings.occlusion_culling),
+      tile_(settings.tile),
       octree_(octree_items(faces_), settings.octree),
       gatherer_(make_exact_gatherer(method, scene, faces_)),
       culling_(scene, faces_, octree_),
@@ -200,7 +201,10 @@ LocalPassResult LocalPass::gather(const Vec3& x, const Vec3& n, double tolerance
 
 LocalPassResult LocalPass::gather_direct(const Vec3& x, const Vec3& n, double tolerance,
                                          const Rgb& exact_part) const {
-  if (occlusion_culling_) return gather_by_clusters(x, n, tolerance, exact_part);
+  if (occlusion_culling_) {
+    return gather_by_clusters(x, n, tolerance,
+                              GatherScope{.known_lo = exact_part, .known_hi = exact_part});
+  }
   LocalPassResult result = gather_plainly(x, n);
   result.irradiance += exact_part;
   return result;

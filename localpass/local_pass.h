@@ -42,9 +42,11 @@
 /// with the bound (U - L) / 2 and stops when max_c bound_c <= tolerance * max_c value_c, so
 /// the relative error (against the brightest channel) is at most the tolerance. At tolerance 0
 /// every cluster is refined to its faces: every term is exact and the bound is 0.
+#include <array>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "geometry/emitting_face.h"
@@ -102,6 +104,10 @@ struct LocalPassSettings {
   /// least this many polygons; in a small scene (the Cornell box's 20) its walk cannot pay.
   /// 0: always.
   int visible_set_from = 64;
+  /// The renderer's certified interpolation (localpass/tile_gather.h): cells of `tile` x `tile`
+  /// pixels on one polygon are gathered at their corners and interpolated, each pixel's bound
+  /// kept (render/irradiance_render.h). 0 or 1: every pixel on its own.
+  int tile = 8;
 };
 
 struct LocalPassResult {
@@ -116,6 +122,9 @@ struct LocalPassResult {
   int gathers = 0;           ///< Exact gathers run (0 when nothing can light x)
   int mirrored = 0;          ///< Gathers at unfolded receivers (000 §3): one per chain not culled
   int visible_polygons = 0;  ///< Polygons x may see (the visibility culling; 0 when it is off)
+  /// 1 when a tile's interpolation gave the smooth part (localpass/tile_gather.h); the counts
+  /// above are then those of the rest, gathered at x.
+  int interpolated = 0;
   /// H(x) refracted through transparent polyhedra (000 §4), by the paper's heuristic: NOT
   /// covered by `bound`, and not in `irradiance`. The total is irradiance + refracted.
   Rgb refracted = Rgb::Zero();
@@ -152,6 +161,20 @@ class LocalPass {
   /// Thread-safe.
   LocalPassResult gather(const Vec3& x, const Vec3& n, double tolerance) const;
 
+  /// Whether gather_tile interpolates: no mirrors, refraction or glossy transfer (their terms
+  /// are gathered per point), and the culling on.
+  bool interpolates() const;
+  /// The renderer's interpolation cells, in pixels (LocalPassSettings::tile).
+  int tile() const { return tile_; }
+  /// At points of one plane (unit normal n) inside the quad of four `corners` (in order around
+  /// it), with `at_corners` their gather(corner, n, tolerance): per point, a result certified
+  /// as gather's is and meeting the same stopping rule, by the tile's interpolation where it
+  /// holds and by gather elsewhere (localpass/tile_gather.h). Thread-safe.
+  std::vector<LocalPassResult> gather_tile(const std::array<Vec3, 4>& corners,
+                                           const std::array<LocalPassResult, 4>& at_corners,
+                                           std::span<const Vec3> points, const Vec3& n,
+                                           double tolerance) const;
+
   const Octree& octree() const { return octree_; }
   int face_count() const { return static_cast<int>(faces_.size()); }
 
@@ -159,10 +182,23 @@ class LocalPass {
   /// The faces' term plus `exact_part`, known exactly (point lights) the stopping rule counts.
   LocalPassResult gather_direct(const Vec3& x, const Vec3& n, double tolerance,
                                 const Rgb& exact_part = Rgb::Zero()) const;
+  /// What one cluster gather sums: by default every polygon's root cluster, with shaft
+  /// culling; or given clusters, those in `whole` known to be seen whole from x (no culling),
+  /// those in `culled` culled as roots are. `known_lo` <= part of H summed elsewhere <=
+  /// `known_hi` (point lights: exact; a tile's interpolated part: an interval) is added, and
+  /// the stopping rule counts it.
+  struct GatherScope {
+    const std::vector<int>* whole = nullptr;
+    const std::vector<int>* culled = nullptr;
+    Rgb known_lo = Rgb::Zero(), known_hi = Rgb::Zero();
+    bool given_roots() const { return whole || culled; }
+  };
   /// The error-bounded sum over the cluster tree (004 Fig. 6), localpass/cluster_gather.cpp.
   LocalPassResult gather_by_clusters(const Vec3& x, const Vec3& n, double tolerance,
-                                     const Rgb& exact_part) const;
+                                     const GatherScope& scope) const;
   class ClusterGather;
+  /// Certified interpolation over a tile (localpass/tile_gather.h).
+  class TileGather;
   /// No culling: every face that can light x radiates in one gather, every face may hide it.
   LocalPassResult gather_plainly(const Vec3& x, const Vec3& n) const;
 
@@ -177,6 +213,7 @@ class LocalPass {
   /// Vertex tracing gathers them in steps of its own session.
   bool faces_by_query_;
   bool occlusion_culling_;
+  int tile_ = 0;
   Octree octree_;
   std::unique_ptr<ExactGatherer> gatherer_;
   OcclusionCulling culling_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <ranges>
 
 #include "geometry/shaft.h"
@@ -180,6 +181,39 @@ void OcclusionCulling::blockers(std::span<const int> candidates, const Vec3& x,
   out->insert(out->end(), coplanar.begin(), coplanar.end());
   std::ranges::sort(*out);
   out->erase(std::unique(out->begin(), out->end()), out->end());
+}
+
+bool OcclusionCulling::may_hide_between(std::span<const Vec3> hull, double margin,
+                                        const Eigen::AlignedBox3d& region,
+                                        std::span<const Vec3> outline,
+                                        const Eigen::AlignedBox3d& box, int polygon) const {
+  if (!polygons_[polygon].coplanar_overlapping.empty()) return true;
+  std::optional<Shaft> shaft;
+  for (size_t p = 0; p < polygons_.size(); ++p) {
+    if (static_cast<int>(p) == polygon) continue;  // its own plane hides none of it
+    const PolygonData& data = polygons_[p];
+    // filter()'s test for every x of the region that is_candidate keeps: x on one side by
+    // more than half the tolerance, part of the box beyond the plane on the other. Over the
+    // region, the height is affine: its range is that of the hull's points, widened by the
+    // margin.
+    double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+    for (const Vec3& v : hull) {
+      const double h = data.normal.dot(v) - data.offset;
+      x_lo = std::min(x_lo, h), x_hi = std::max(x_hi, h);
+    }
+    x_lo -= margin, x_hi += margin;
+    double b_lo = std::numeric_limits<double>::infinity(), b_hi = -b_lo;
+    for (const Vec3& v : outline) {
+      const double h = data.normal.dot(v) - data.offset;
+      b_lo = std::min(b_lo, h), b_hi = std::max(b_hi, h);
+    }
+    const bool separates = (x_hi > 0.5 * in_plane_ && b_lo < -in_plane_) ||
+                           (x_lo < -0.5 * in_plane_ && b_hi > in_plane_);
+    if (!separates) continue;
+    if (!shaft) shaft.emplace(region, box, pad_);
+    if (shaft->may_meet(data.vertices, data.box)) return true;
+  }
+  return false;
 }
 
 OcclusionSplit OcclusionCulling::split_without_culling(const Vec3& x, const Vec3& n) const {

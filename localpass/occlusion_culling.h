@@ -57,10 +57,27 @@ class OcclusionCulling {
   /// it that overlap it (they hide each other by index). Empty: nothing hides any of it.
   void blockers(std::span<const int> candidates, const Vec3& x, const Eigen::AlignedBox3d& box,
                 const std::vector<Vec3>& outline, int polygon, std::vector<int>* out) const;
+  /// Whether some polygon may hide part of a cluster of polygon `polygon` from
+  /// some point of `region`, as blockers() would name one from any point x of it: a polygon
+  /// x is off (by half the tolerance), whose plane separates x from part of the box, that meets
+  /// the shaft between the two boxes (Shaft's box-to-box form), or a coplanar polygon that
+  /// overlaps `polygon`. False: every point of `region` sees all of the box's part of the
+  /// polygon whole. Cost: one pass over the scene's polygons.
+  /// The region is given twice: as the points within `margin` of the hull of `hull` (for the
+  /// planes' tests) and as a box around them (for the shaft); the cluster as its `outline`'s
+  /// vertices (the planes' tests, as filter() takes them) and the box around it.
+  bool may_hide_between(std::span<const Vec3> hull, double margin,
+                        const Eigen::AlignedBox3d& region, std::span<const Vec3> outline,
+                        const Eigen::AlignedBox3d& box, int polygon) const;
   /// Whether x is strictly in front of the polygon's plane (the gatherers' test).
   bool in_front_of_polygon(int polygon, const Vec3& x) const {
-    return polygons_[polygon].normal.dot(x) - polygons_[polygon].offset > in_plane_;
+    return height(polygon, x) > in_plane_;
   }
+  /// x's signed height over the polygon's plane, and how far above it in_front_of_polygon asks.
+  double height(int polygon, const Vec3& x) const {
+    return polygons_[polygon].normal.dot(x) - polygons_[polygon].offset;
+  }
+  double in_plane() const { return in_plane_; }
   /// The same faces with no culling: every one that can light x shadowed, in one group, with
   /// every face its occluder (the baseline the culling is measured against).
   OcclusionSplit split_without_culling(const Vec3& x, const Vec3& n) const;

@@ -35,7 +35,10 @@ struct IrradianceImage {
   std::vector<int> projected;  ///< Per pixel: faces projected (hemisphere: with possible occluders)
   std::vector<int> clusters;   ///< Per pixel: cluster intervals computed (localpass/cluster_tree.h)
   std::vector<char> surface;   ///< Per pixel: 1 where a front-facing surface was gathered
-  int samples_per_pixel = 0;   ///< Monte Carlo: rays per pixel; 0 for the exact local pass
+  /// Per pixel: 1 where a tile's certified interpolation gave its smooth part
+  /// (localpass/tile_gather.h)
+  std::vector<char> interpolated;
+  int samples_per_pixel = 0;  ///< Monte Carlo: rays per pixel; 0 for the exact local pass
 
   /// The heuristic parts by name ("refracted", "glossy"), each apart from the bound.
   std::vector<std::pair<const char*, const Image*>> heuristic_parts() const {
@@ -52,6 +55,7 @@ struct IrradianceImage {
 struct IrradianceSummary {
   size_t pixels = 0;  ///< pixels gathered
   double gathered_exactly_mean = 0, projected_mean = 0, clusters_mean = 0;
+  size_t interpolated = 0;  ///< pixels whose smooth part a tile interpolated
   int gathered_exactly_max = 0, projected_max = 0;
   double bound_max = 0;  ///< largest bound, largest channel
   /// bound / B per pixel (largest channels; 0 where B = 0): mean and max.
@@ -73,11 +77,15 @@ IrradianceImage render_path_traced(const Scene& scene, const RayCaster& caster,
                                    const Job& job = Job::world());
 
 /// Renders through `camera` with the local pass at `tolerance`; parallel over 16x16 pixel tiles
-/// (TBB). Every pixel is computed on its own, so the image is bitwise the same for any thread
-/// count. `progress` (may be empty) is called with the number of pixels done, from worker
-/// threads, now and then. Over an MPI job (`job` of more than one process) the tiles are spread
-/// over its processes and the whole image is on the root alone; it is bitwise the same image
-/// (and on the other processes these functions return partial images).
+/// (TBB). With the pass's interpolation cells (LocalPass::tile() > 1, tolerance > 0, one
+/// process), the pixels on every tile-th row and column are gathered first; a cell between
+/// them whose pixels all see one polygon directly (no filter or mirror on the way) is gathered
+/// by LocalPass::gather_tile, every other pixel on its own; every pixel keeps its certified
+/// bound. The image is bitwise the same for any thread count. `progress` (may be empty) is called
+/// with the number of pixels done, from worker threads, now and then. Over an MPI job (`job` of
+/// more than one process) the tiles are spread over its processes and the whole image is on the
+/// root alone; it is bitwise the same image (and on the other processes these functions return
+/// partial images).
 IrradianceImage render_local_pass(const Scene& scene, const RayCaster& caster, const Camera& camera,
                                   const LocalPass& pass, double tolerance,
                                   const std::function<void(size_t)>& progress = {},
