@@ -101,7 +101,8 @@ RenderStats local_pass_stats(const RenderOptions& o, const IrradianceImage& imag
 
 /// Per-pixel statistics for `export --stats`: faces projected and gathered (rays, for Monte
 /// Carlo), for the exact methods the certified bound on B (largest channel) and the bound
-/// relative to B, and 1 where a front-facing surface was gathered.
+/// relative to B and 1 where a cell interpolated the pixel's smooth part, and 1 where a
+/// front-facing surface was gathered.
 ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   ChannelImage out{image.radiosity.width, image.radiosity.height, {}};
   const size_t n = image.surface.size();
@@ -120,9 +121,12 @@ ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   if (!certified) return out;
   auto& bound = out.channels["bound"];
   auto& relative = out.channels["relative_bound"];
+  auto& interpolated = out.channels["interpolated"];
   bound.resize(n);
   relative.resize(n);
+  interpolated.resize(n);
   for (size_t i = 0; i < n; ++i) {
+    interpolated[i] = image.interpolated[i] ? 1.0f : 0.0f;
     // The bound covers the certified part alone: B less the heuristic parts (000 §4, 003).
     const double b = image.bound.pixels[i].maxCoeff();
     const double value = image.certified_part(i).maxCoeff();

@@ -546,7 +546,8 @@ TEST(Cli, SweepAndExportWriteTheirFiles) {
   pixels->GetOutput()->GetDimensions(dims);
   EXPECT_EQ(dims[0], 8);
   EXPECT_EQ(dims[1], 6);
-  for (const char* name : {"projected", "emitting", "surface", "bound", "relative_bound"}) {
+  for (const char* name :
+       {"projected", "emitting", "surface", "bound", "relative_bound", "interpolated"}) {
     EXPECT_NE(pixels->GetOutput()->GetPointData()->GetArray(name), nullptr) << name;
   }
   vtkNew<vtkXMLPolyDataReader> mesh;
