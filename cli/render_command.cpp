@@ -393,8 +393,9 @@ void add_render_command(CLI::App& app, Run& run) {
                   "hemisphere/vertex: certified interpolation over cells of this many pixels a "
                   "side: a cell's corners are gathered, the light that reaches all of it "
                   "unhidden is interpolated with a bound on the error, the rest gathered per "
-                  "pixel; each pixel keeps its certified bound (0 or 1: every pixel on its own; "
-                  "never at tolerance 0)")
+                  "pixel, where that is less work than gathering the pixel on its own; each "
+                  "pixel keeps its certified bound (0 or 1: every pixel on its own; never at "
+                  "tolerance 0)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   sub->add_option("--stats", o->stats,

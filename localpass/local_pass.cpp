@@ -46,6 +46,7 @@ LocalPass::LocalPass(const Scene& scene, std::vector<EmittingFace> faces, Method
       faces_by_query_(method == Method::hemisphere),
       occlusion_culling_(settings.occlusion_culling),
       tile_(settings.tile),
+      tile_when_it_pays_(settings.tile_when_it_pays),
       octree_(octree_items(faces_), settings.octree),
       gatherer_(make_exact_gatherer(method, scene, faces_)),
       culling_(scene, faces_, octree_),

@@ -108,6 +108,10 @@ struct LocalPassSettings {
   /// pixels on one polygon are gathered at their corners and interpolated, each pixel's bound
   /// kept (render/irradiance_render.h). 0 or 1: every pixel on its own.
   int tile = 8;
+  /// A cell interpolates only when its rest is less work than a corner's plain gather (at
+  /// loose tolerances the plain gather is cheaper). false: wherever it can (for measuring the
+  /// cells and testing their bound).
+  bool tile_when_it_pays = true;
 };
 
 struct LocalPassResult {
@@ -214,6 +218,7 @@ class LocalPass {
   bool faces_by_query_;
   bool occlusion_culling_;
   int tile_ = 0;
+  bool tile_when_it_pays_ = true;
   Octree octree_;
   std::unique_ptr<ExactGatherer> gatherer_;
   OcclusionCulling culling_;

@@ -138,8 +138,15 @@ class LocalPass::TileGather {
       margin = std::max(margin, (points_[i] - inside / sum).norm());
     }
     margin += relative::kRounding * region.diagonal().norm();
-    const bool ok = tolerance_ > 0 && darkest > 0 &&
-                    cut(region, margin, slope, kCurvatureShare * tolerance_ * darkest, spread);
+    bool ok = tolerance_ > 0 && darkest > 0 &&
+              cut(region, margin, slope, kCurvatureShare * tolerance_ * darkest, spread);
+    // A cell pays only when its rest is less work than the plain gather: its roots against
+    // the terms a corner's own gather summed (a cost model; either way is certified).
+    double plain_work = 0;
+    for (const LocalPassResult& r : at_corners_)
+      plain_work += 0.25 * (r.clusters + r.gathered_exactly);
+    const double rest_work = static_cast<double>(rest_whole_.size() + rest_culled_.size());
+    if (pass_.tile_when_it_pays_ && rest_work > plain_work) ok = false;
     if (!ok) {
       for (size_t i = 0; i < points_.size(); ++i) on_its_own(i);
       return results;
