@@ -109,10 +109,8 @@ class LocalPass::TileGather {
 
   std::vector<LocalPassResult> run() {
     std::vector<LocalPassResult> results(points_.size());
-    std::vector<char> done(points_.size(), 0);
     const auto on_its_own = [&](size_t i) {
       results[i] = pass_.gather(points_[i], n_, tolerance_);
-      done[i] = 1;
     };
     double darkest = std::numeric_limits<double>::infinity();
     for (const LocalPassResult& r : at_corners_)
