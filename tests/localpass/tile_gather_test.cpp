@@ -110,7 +110,7 @@ int violations(const IrradianceImage& image, const IrradianceImage& exact, size_
 TEST(TileGather, EveryInterpolatedPixelOfTheCornellBoxKeepsItsBound) {
   const test::SolvedScene& s = test::coarse_cornell();
   CameraSpec spec = *s.scene.camera;
-  spec.width = spec.height = 40;
+  spec.width = spec.height = 32;
   const Camera camera(spec);
   const RayCaster caster(s.scene);
   LocalPassSettings tiled, plain;
@@ -128,7 +128,7 @@ TEST(TileGather, EveryInterpolatedPixelOfTheCornellBoxKeepsItsBound) {
     const IrradianceImage image = render_local_pass(s.scene, caster, camera, pass, tolerance);
     EXPECT_EQ(violations(image, exact, &interpolated), 0) << "tolerance " << tolerance;
   }
-  EXPECT_GT(interpolated, 500u);  // of 3 x 1,600 pixels: the tiles took part
+  EXPECT_GT(interpolated, 300u);  // of 3 x 1,024 pixels: the tiles took part
 }
 
 TEST(TileGather, BoundsHoldAcrossShadowBoundariesContactsAndDegenerateFamilies) {
@@ -166,7 +166,7 @@ TEST(TileGather, BoundsHoldAcrossShadowBoundariesContactsAndDegenerateFamilies) 
   const RayCaster caster(scene);
   const std::vector<EmittingFace> faces = faces_from_solution(scene, solve(caster, settings));
   CameraSpec spec = *scene.camera;
-  spec.width = spec.height = 48;
+  spec.width = spec.height = 40;
   const Camera camera(spec);
   LocalPassSettings plain, tiled;
   plain.tile = 0;
@@ -181,7 +181,7 @@ TEST(TileGather, BoundsHoldAcrossShadowBoundariesContactsAndDegenerateFamilies) 
       const IrradianceImage image = render_local_pass(scene, caster, camera, pass, tolerance);
       EXPECT_EQ(violations(image, exact, &interpolated), 0) << "tolerance " << tolerance;
     }
-    EXPECT_GT(interpolated, 1000u);
+    EXPECT_GT(interpolated, 700u);
   }
 }
 
