@@ -16,6 +16,17 @@ namespace rad {
 /// The 2D cross product a.x b.y - a.y b.x: positive when b turns counter-clockwise from a.
 inline double cross_2d(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+/// The barycentric weights (u, v, w) of p in the 2D triangle (a, b, c): p = u a + v b + w c,
+/// u + v + w = 1 (all >= 0 inside). None when the triangle has no area.
+inline std::optional<std::array<double, 3>> barycentric_2d(const Vec2& a, const Vec2& b,
+                                                           const Vec2& c, const Vec2& p) {
+  const Vec2 e1 = b - a, e2 = c - a, d = p - a;
+  const double det = cross_2d(e1, e2);
+  if (!(std::abs(det) > 0)) return std::nullopt;
+  const double v = cross_2d(d, e2) / det, w = cross_2d(e1, d) / det;
+  return std::array{1 - v - w, v, w};
+}
+
 /// Newell's vector: twice the vector area of a (possibly non-planar) polygon. Its direction is
 /// the best-fit front normal, its length twice the projected area. Exact for planar polygons.
 Vec3 newell_vector(const std::vector<Vec3>& vertices);

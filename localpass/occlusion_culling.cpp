@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 #include <ranges>
+#include <tuple>
+#include <utility>
 
 #include "geometry/shaft.h"
 #include "geometry/tolerance.h"
@@ -34,6 +36,17 @@ bool convex_overlap(const std::vector<Vec3>& a, const std::vector<Vec3>& b, cons
 }
 
 }  // namespace
+
+/// The range of the points' signed heights over the polygon's plane.
+std::pair<double, double> OcclusionCulling::height_range(const PolygonData& polygon,
+                                                         std::span<const Vec3> points) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec3& v : points) {
+    const double h = polygon.normal.dot(v) - polygon.offset;
+    lo = std::min(lo, h), hi = std::max(hi, h);
+  }
+  return {lo, hi};
+}
 
 OcclusionCulling::OcclusionCulling(const Scene& scene, const std::vector<EmittingFace>& faces,
                                    const Octree& octree)
@@ -110,11 +123,7 @@ void OcclusionCulling::filter(std::span<const int> candidates, const Vec3& x,
     // the face's own plane) beyond it, seen from x.
     double lo, hi;
     if (face) {
-      lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Vec3& v : *face) {
-        const double s = polygon.normal.dot(v) - polygon.offset;
-        lo = std::min(lo, s), hi = std::max(hi, s);
-      }
+      std::tie(lo, hi) = height_range(polygon, *face);
     } else {
       const double at_centre = polygon.normal.dot(centre) - polygon.offset;
       const double reach = polygon.normal.cwiseAbs().dot(half);
@@ -196,17 +205,9 @@ bool OcclusionCulling::may_hide_between(std::span<const Vec3> hull, double margi
     // more than half the tolerance, part of the box beyond the plane on the other. Over the
     // region, the height is affine: its range is that of the hull's points, widened by the
     // margin.
-    double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
-    for (const Vec3& v : hull) {
-      const double h = data.normal.dot(v) - data.offset;
-      x_lo = std::min(x_lo, h), x_hi = std::max(x_hi, h);
-    }
+    auto [x_lo, x_hi] = height_range(data, hull);
     x_lo -= margin, x_hi += margin;
-    double b_lo = std::numeric_limits<double>::infinity(), b_hi = -b_lo;
-    for (const Vec3& v : outline) {
-      const double h = data.normal.dot(v) - data.offset;
-      b_lo = std::min(b_lo, h), b_hi = std::max(b_hi, h);
-    }
+    const auto [b_lo, b_hi] = height_range(data, outline);
     const bool separates = (x_hi > 0.5 * in_plane_ && b_lo < -in_plane_) ||
                            (x_lo < -0.5 * in_plane_ && b_hi > in_plane_);
     if (!separates) continue;

@@ -21,6 +21,7 @@
 /// gatherers' own), 1e-9 of it as padding on the shafts (on the safe side).
 #include <Eigen/Geometry>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "octree/octree.h"
@@ -73,11 +74,11 @@ class OcclusionCulling {
   bool in_front_of_polygon(int polygon, const Vec3& x) const {
     return height(polygon, x) > in_plane_;
   }
-  /// x's signed height over the polygon's plane, and how far above it in_front_of_polygon asks.
+  /// x's signed height over the polygon's plane (in_front_of_polygon asks for more than the
+  /// gatherers' in-plane tolerance).
   double height(int polygon, const Vec3& x) const {
     return polygons_[polygon].normal.dot(x) - polygons_[polygon].offset;
   }
-  double in_plane() const { return in_plane_; }
   /// The same faces with no culling: every one that can light x shadowed, in one group, with
   /// every face its occluder (the baseline the culling is measured against).
   OcclusionSplit split_without_culling(const Vec3& x, const Vec3& n) const;
@@ -93,6 +94,8 @@ class OcclusionCulling {
     Eigen::AlignedBox3d box;
     std::vector<int> coplanar_overlapping;  ///< Polygons that hide it (or that it hides) by index
   };
+  static std::pair<double, double> height_range(const PolygonData& polygon,
+                                                std::span<const Vec3> points);
   /// Polygons among `candidates` that may hide part of `box` (of `face`, when given, inside
   /// it) from x.
   void filter(std::span<const int> candidates, const Vec3& x, const Eigen::AlignedBox3d& box,

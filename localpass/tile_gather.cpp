@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geometry/clip.h"
+#include "geometry/planar.h"
 #include "geometry/tolerance.h"
 
 namespace rad {
@@ -20,7 +21,7 @@ KernelVariation kernel_variation(const Eigen::AlignedBox3d& region, const Vec3& 
   // Every u = y - x with x in the region and y in the box lies in this box.
   const Eigen::AlignedBox3d u_box(box.min() - region.max(), box.max() - region.min());
   const double r2 = u_box.squaredExteriorDistance(Vec3::Zero());
-  if (!(r2 > 0)) return {infinite, infinite};
+  if (!(r2 > 0)) return {infinite, infinite, infinite};
   const Vec3 m = -normal;
   // P = n . u and Q = m . u are linear and |in-plane part of u| convex: largest at corners.
   double p_max = 0, q_max = 0, in_plane_max = 0;
@@ -57,24 +58,22 @@ struct Weights {
 };
 
 Weights weights_in_quad(const std::array<Vec3, 4>& corners, const Vec3& p, const Vec3& n) {
-  const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
-  const auto flat = [&](const Vec3& v) { return Eigen::Vector2d(e1.dot(v), e2.dot(v)); };
+  const PlaneFrame frame(corners[0], n);
+  const Vec2 at = frame.to_2d(p);
   Weights best;
   double best_min = -std::numeric_limits<double>::infinity();
   for (const std::array<int, 3> t : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
-    const Eigen::Vector2d o = flat(corners[t[0]]);
-    const Eigen::Vector2d v1 = flat(corners[t[1]]) - o, v2 = flat(corners[t[2]]) - o;
-    const Eigen::Vector2d w = flat(p) - o;
-    const double det = v1.x() * v2.y() - v1.y() * v2.x();
-    if (!(std::abs(det) > 1e-9 * v1.norm() * v2.norm())) continue;  // a degenerate triangle
-    const double beta = (w.x() * v2.y() - w.y() * v2.x()) / det;
-    const double gamma = (v1.x() * w.y() - v1.y() * w.x()) / det;
-    const double alpha = 1 - beta - gamma;
-    const double lowest = std::min({alpha, beta, gamma});
+    const Vec2 a = frame.to_2d(corners[t[0]]), b = frame.to_2d(corners[t[1]]),
+               c = frame.to_2d(corners[t[2]]);
+    // A sliver of a triangle (an edge-on cell) gives weights that rounding dominates.
+    if (!(std::abs(cross_2d(b - a, c - a)) > 1e-9 * (b - a).norm() * (c - a).norm())) continue;
+    const auto weights = barycentric_2d(a, b, c, at);
+    if (!weights) continue;
+    const double lowest = std::min({(*weights)[0], (*weights)[1], (*weights)[2]});
     if (lowest <= best_min) continue;
     best_min = lowest;
     best = Weights{};
-    best.l[t[0]] = alpha, best.l[t[1]] = beta, best.l[t[2]] = gamma;
+    for (int k = 0; k < 3; ++k) best.l[t[k]] = (*weights)[k];
     best.valid = true;
   }
   // Inside the quad but for rounding: a point outside is left to its own gather.
@@ -335,10 +334,10 @@ class LocalPass::TileGather {
     return true;
   }
 
-  /// Caps on the cut's work per tile: partly hidden clusters split, smooth ones opened.
   /// Of T times the darkest corner's H: what the curvature terms may take (the cut's budget),
   /// and the relative tolerance of the corners' gathers of the smooth part.
   static constexpr double kCurvatureShare = 0.5, kCornerShare = 0.25;
+  /// Caps on the cut's work per tile: partly hidden clusters split, smooth ones opened.
   static constexpr int kSplits = 256, kOpenings = 256;
 
   const LocalPass& pass_;

@@ -14,12 +14,9 @@ Vec3 shading_normal(const Polygon& p, const Vec3& x) {
   double best = -INFINITY;
   Vec3 normal = p.normal;
   for (const auto& [a, b, c] : triangulate(outline)) {
-    const Vec2 e1 = outline[b] - outline[a], e2 = outline[c] - outline[a], d = at - outline[a];
-    const double det = cross_2d(e1, e2);
-    if (!(std::abs(det) > 0)) continue;
-    const double v = cross_2d(d, e2) / det;
-    const double w = cross_2d(e1, d) / det;
-    const double u = 1 - v - w;
+    const auto weights = barycentric_2d(outline[a], outline[b], outline[c], at);
+    if (!weights) continue;
+    const auto [u, v, w] = *weights;
     const double least = std::min({u, v, w});
     if (least <= best) continue;
     best = least;
