@@ -100,9 +100,9 @@ RenderStats local_pass_stats(const RenderOptions& o, const IrradianceImage& imag
 }
 
 /// Per-pixel statistics for `export --stats`: faces projected and gathered (rays, for Monte
-/// Carlo), for the exact methods the certified bound on B (largest channel) and the bound
-/// relative to B and 1 where a cell interpolated the pixel's smooth part, and 1 where a
-/// front-facing surface was gathered.
+/// Carlo), 1 where a front-facing surface was gathered, and for the exact methods the
+/// certified bound on B (largest channel), the bound relative to B, and 1 where a cell
+/// interpolated the pixel's smooth part (localpass/tile_gather.h).
 ChannelImage pixel_channels(const IrradianceImage& image, bool certified) {
   ChannelImage out{image.radiosity.width, image.radiosity.height, {}};
   const size_t n = image.surface.size();

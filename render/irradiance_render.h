@@ -35,8 +35,8 @@ struct IrradianceImage {
   std::vector<int> projected;  ///< Per pixel: faces projected (hemisphere: with possible occluders)
   std::vector<int> clusters;   ///< Per pixel: cluster intervals computed (localpass/cluster_tree.h)
   std::vector<char> surface;   ///< Per pixel: 1 where a front-facing surface was gathered
-  /// Per pixel: 1 where a tile's certified interpolation gave its smooth part
-  /// (localpass/tile_gather.h)
+  /// Per pixel: 1 where an interpolation cell's certified interpolation gave its smooth part
+  /// (localpass/tile_gather.h; LocalPass::tile() sets the cells' side)
   std::vector<char> interpolated;
   int samples_per_pixel = 0;  ///< Monte Carlo: rays per pixel; 0 for the exact local pass
 
@@ -55,7 +55,7 @@ struct IrradianceImage {
 struct IrradianceSummary {
   size_t pixels = 0;  ///< pixels gathered
   double gathered_exactly_mean = 0, projected_mean = 0, clusters_mean = 0;
-  size_t interpolated = 0;  ///< pixels whose smooth part a tile interpolated
+  size_t interpolated = 0;  ///< pixels whose smooth part an interpolation cell gave
   int gathered_exactly_max = 0, projected_max = 0;
   double bound_max = 0;  ///< largest bound, largest channel
   /// bound / B per pixel (largest channels; 0 where B = 0): mean and max.
